@@ -1,0 +1,285 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtkTOMFieldData.h"
+
+#include "TOMMesh.h"
+#include "TOMValidator.h"
+
+#include "vtkCellArray.h"
+#include "vtkCellArrayIterator.h"
+#include "vtkDataArray.h"
+#include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkPointData.h"
+#include "vtkPolyData.h"
+#include "vtkTypeUInt32Array.h"
+
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+struct vtkTOMFieldData::Internals
+{
+  timecritical::TOMMesh Mesh;
+  std::string ErrorMessage;
+  bool Valid = false;
+};
+
+vtkStandardNewMacro(vtkTOMFieldData);
+
+vtkTOMFieldData::vtkTOMFieldData()
+  : Internal(new Internals)
+{
+}
+
+vtkTOMFieldData::~vtkTOMFieldData() = default;
+
+bool vtkTOMFieldData::HasTOMArrays(vtkPolyData* data)
+{
+  return data && data->GetPointData()->GetAbstractArray(SubstitutionArrayName()) &&
+    data->GetFieldData()->GetAbstractArray(CountsArrayName());
+}
+
+namespace
+{
+// Reads a non-negative integer that must fit in 32 bits.
+bool ToIndex(double value, uint32_t& out)
+{
+  if (!(value >= 0.0) || value > std::numeric_limits<uint32_t>::max() || value != std::floor(value))
+  {
+    return false;
+  }
+  out = static_cast<uint32_t>(value);
+  return true;
+}
+
+bool IsIntegerArray(vtkDataArray* array)
+{
+  switch (array->GetDataType())
+  {
+    case VTK_CHAR:
+    case VTK_SIGNED_CHAR:
+    case VTK_UNSIGNED_CHAR:
+    case VTK_SHORT:
+    case VTK_UNSIGNED_SHORT:
+    case VTK_INT:
+    case VTK_UNSIGNED_INT:
+    case VTK_LONG:
+    case VTK_UNSIGNED_LONG:
+    case VTK_LONG_LONG:
+    case VTK_UNSIGNED_LONG_LONG:
+    case VTK_ID_TYPE:
+      return true;
+    default:
+      return false;
+  }
+}
+}
+
+bool vtkTOMFieldData::Read(vtkPolyData* data)
+{
+  Internals& in = *this->Internal;
+  in.Valid = false;
+  in.Mesh = timecritical::TOMMesh();
+  auto fail = [&in](const std::string& message) {
+    in.ErrorMessage = message;
+    return false;
+  };
+
+  if (!data)
+  {
+    return fail("no input data");
+  }
+  vtkDataArray* substitution = data->GetPointData()->GetArray(SubstitutionArrayName());
+  vtkDataArray* counts = vtkDataArray::SafeDownCast(data->GetFieldData()->GetAbstractArray(CountsArrayName()));
+  if (!substitution || !counts)
+  {
+    return fail("not a Totally Ordered Mesh: the point-data array TOMSubstitution or the field-data "
+                "array TOMCounts is missing (build one with vtkTOMBuilder)");
+  }
+  if (substitution->GetNumberOfComponents() != 1 || !IsIntegerArray(substitution))
+  {
+    return fail("TOMSubstitution must be a single-component integer array");
+  }
+  if (counts->GetNumberOfComponents() != 1 || counts->GetNumberOfTuples() != 4)
+  {
+    return fail("TOMCounts must hold 4 values (vertices, triangles, base vertices, base triangles)");
+  }
+  uint32_t count[4];
+  for (int i = 0; i < 4; ++i)
+  {
+    if (!ToIndex(counts->GetTuple1(i), count[i]))
+    {
+      std::ostringstream msg;
+      msg << "TOMCounts value " << i << " (" << counts->GetTuple1(i)
+          << ") is not a 32-bit count";
+      return fail(msg.str());
+    }
+  }
+  const vtkIdType numberOfPoints = data->GetNumberOfPoints();
+  if (numberOfPoints != static_cast<vtkIdType>(count[0]) ||
+    substitution->GetNumberOfTuples() != numberOfPoints)
+  {
+    std::ostringstream msg;
+    msg << "TOM vertex counts disagree: TOMCounts says " << count[0] << ", the data has "
+        << numberOfPoints << " points and " << substitution->GetNumberOfTuples()
+        << " TOMSubstitution values";
+    return fail(msg.str());
+  }
+  if (data->GetNumberOfVerts() || data->GetNumberOfLines() || data->GetNumberOfStrips())
+  {
+    return fail("a TOM holds triangles only, but the data also has vertices, lines or strips");
+  }
+  vtkCellArray* polys = data->GetPolys();
+  if (polys->GetNumberOfCells() != static_cast<vtkIdType>(count[1]))
+  {
+    std::ostringstream msg;
+    msg << "TOMCounts says " << count[1] << " triangles, the data has "
+        << polys->GetNumberOfCells() << " polygons";
+    return fail(msg.str());
+  }
+
+  timecritical::TOMMesh& mesh = in.Mesh;
+  mesh.Substitution.resize(count[0]);
+  for (vtkIdType i = 0; i < numberOfPoints; ++i)
+  {
+    if (!ToIndex(substitution->GetTuple1(i), mesh.Substitution[i]))
+    {
+      std::ostringstream msg;
+      msg << "TOMSubstitution of point " << i << " (" << substitution->GetTuple1(i)
+          << ") is not a point id";
+      return fail(msg.str());
+    }
+  }
+  mesh.Triangles.resize(3 * static_cast<size_t>(count[1]));
+  auto cells = vtk::TakeSmartPointer(polys->NewIterator());
+  size_t t = 0;
+  for (cells->GoToFirstCell(); !cells->IsDoneWithTraversal(); cells->GoToNextCell(), ++t)
+  {
+    vtkIdType size;
+    const vtkIdType* ids;
+    cells->GetCurrentCell(size, ids);
+    if (size != 3)
+    {
+      std::ostringstream msg;
+      msg << "cell " << t << " has " << size << " points; a TOM holds triangles only";
+      return fail(msg.str());
+    }
+    for (int c = 0; c < 3; ++c)
+    {
+      if (ids[c] < 0 || ids[c] >= numberOfPoints)
+      {
+        std::ostringstream msg;
+        msg << "triangle " << t << " refers to point " << ids[c] << ", out of range";
+        return fail(msg.str());
+      }
+      mesh.Triangles[3 * t + c] = static_cast<uint32_t>(ids[c]);
+    }
+  }
+  mesh.BaseVertexCount = count[2];
+  mesh.BaseTriangleCount = count[3];
+
+  if (vtkAbstractArray* curveArray = data->GetFieldData()->GetAbstractArray(ErrorCurveArrayName()))
+  {
+    vtkDataArray* curve = vtkDataArray::SafeDownCast(curveArray);
+    if (!curve || curve->GetNumberOfComponents() != 2)
+    {
+      return fail("TOMErrorCurve must be a numeric array of (triangles, error) pairs");
+    }
+    std::vector<timecritical::TOMErrorCurve::Sample> samples(curve->GetNumberOfTuples());
+    for (vtkIdType i = 0; i < curve->GetNumberOfTuples(); ++i)
+    {
+      if (!ToIndex(curve->GetComponent(i, 0), samples[i].Triangles))
+      {
+        std::ostringstream msg;
+        msg << "TOMErrorCurve sample " << i << " has a bad triangle count";
+        return fail(msg.str());
+      }
+      samples[i].Error = static_cast<float>(curve->GetComponent(i, 1));
+    }
+    mesh.ErrorCurve = timecritical::TOMErrorCurve(std::move(samples));
+  }
+
+  const std::string problem = timecritical::TOMValidator::Check(mesh);
+  if (!problem.empty())
+  {
+    return fail("invalid TOM: " + problem);
+  }
+  in.ErrorMessage.clear();
+  in.Valid = true;
+  return true;
+}
+
+const char* vtkTOMFieldData::GetErrorMessage() const
+{
+  return this->Internal->ErrorMessage.c_str();
+}
+
+const timecritical::TOMMesh& vtkTOMFieldData::GetMesh() const
+{
+  return this->Internal->Mesh;
+}
+
+void vtkTOMFieldData::Write(const timecritical::TOMMesh& mesh, vtkPolyData* data)
+{
+  vtkNew<vtkTypeUInt32Array> substitution;
+  substitution->SetName(SubstitutionArrayName());
+  substitution->SetNumberOfValues(static_cast<vtkIdType>(mesh.Substitution.size()));
+  std::copy(mesh.Substitution.begin(), mesh.Substitution.end(), substitution->GetPointer(0));
+  data->GetPointData()->AddArray(substitution);
+
+  vtkNew<vtkTypeUInt32Array> counts;
+  counts->SetName(CountsArrayName());
+  counts->SetNumberOfValues(4);
+  counts->SetValue(0, mesh.GetNumberOfVertices());
+  counts->SetValue(1, mesh.GetNumberOfTriangles());
+  counts->SetValue(2, mesh.BaseVertexCount);
+  counts->SetValue(3, mesh.BaseTriangleCount);
+  data->GetFieldData()->AddArray(counts);
+
+  vtkNew<vtkDoubleArray> curve;
+  curve->SetName(ErrorCurveArrayName());
+  curve->SetNumberOfComponents(2);
+  curve->SetComponentName(0, "Triangles");
+  curve->SetComponentName(1, "Error");
+  const auto& samples = mesh.ErrorCurve.GetSamples();
+  curve->SetNumberOfTuples(static_cast<vtkIdType>(samples.size()));
+  for (size_t i = 0; i < samples.size(); ++i)
+  {
+    curve->SetComponent(static_cast<vtkIdType>(i), 0, samples[i].Triangles);
+    curve->SetComponent(static_cast<vtkIdType>(i), 1, samples[i].Error);
+  }
+  data->GetFieldData()->AddArray(curve);
+}
+
+vtkIdType vtkTOMFieldData::GetNumberOfVertices() const
+{
+  return this->Internal->Valid ? this->Internal->Mesh.GetNumberOfVertices() : 0;
+}
+
+vtkIdType vtkTOMFieldData::GetNumberOfTriangles() const
+{
+  return this->Internal->Valid ? this->Internal->Mesh.GetNumberOfTriangles() : 0;
+}
+
+vtkIdType vtkTOMFieldData::GetBaseVertexCount() const
+{
+  return this->Internal->Valid ? this->Internal->Mesh.BaseVertexCount : 0;
+}
+
+vtkIdType vtkTOMFieldData::GetBaseTriangleCount() const
+{
+  return this->Internal->Valid ? this->Internal->Mesh.BaseTriangleCount : 0;
+}
+
+void vtkTOMFieldData::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Valid: " << this->Internal->Valid << "\n";
+  os << indent << "ErrorMessage: " << this->Internal->ErrorMessage << "\n";
+  os << indent << "NumberOfVertices: " << this->GetNumberOfVertices() << "\n";
+  os << indent << "NumberOfTriangles: " << this->GetNumberOfTriangles() << "\n";
+  os << indent << "BaseVertexCount: " << this->GetBaseVertexCount() << "\n";
+  os << indent << "BaseTriangleCount: " << this->GetBaseTriangleCount() << "\n";
+}
