@@ -117,7 +117,14 @@ int vtkExtractTOMResolution::RequestData(
     default:
       break;
   }
-  const uint32_t vertexCount = traversal.GetVertexCountForTriangles(targetTriangles);
+  uint32_t vertexCount = traversal.GetVertexCountForTriangles(targetTriangles);
+  if (this->SelectionMode == BY_MAXIMUM_ERROR && targetTriangles > 0 &&
+    targetTriangles < mesh.GetNumberOfTriangles())
+  {
+    // The error bound needs at least targetTriangles triangles: take the
+    // coarsest mesh in which triangle targetTriangles-1 is still alive.
+    vertexCount = std::max(vertexCount, traversal.GetMinimumVertexCount(targetTriangles - 1));
+  }
   std::vector<uint32_t> indices;
   const uint32_t triangleCount = traversal.Extract(vertexCount, indices);
 

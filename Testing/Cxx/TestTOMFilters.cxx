@@ -1,0 +1,551 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Tests of vtkTOMBuilder, vtkExtractTOMResolution and vtkTOMFieldData.
+#include "TOMMesh.h"
+#include "vtkExtractTOMResolution.h"
+#include "vtkTOMBuilder.h"
+#include "vtkTOMFieldData.h"
+
+#include "vtkCallbackCommand.h"
+#include "vtkCellArray.h"
+#include "vtkCellData.h"
+#include "vtkCommand.h"
+#include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
+#include "vtkFloatArray.h"
+#include "vtkNew.h"
+#include "vtkOBJReader.h"
+#include "vtkPlaneSource.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkPolyDataNormals.h"
+#include "vtkSmartPointer.h"
+#include "vtkSphereSource.h"
+#include "vtkStripper.h"
+#include "vtkTriangleFilter.h"
+#include "vtkTypeUInt32Array.h"
+#include "vtkXMLPolyDataReader.h"
+#include "vtkXMLPolyDataWriter.h"
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace
+{
+// Collects the error and warning messages an algorithm emits.
+class MessageLog
+{
+public:
+  explicit MessageLog(vtkObject* object)
+  {
+    this->Callback->SetClientData(this);
+    this->Callback->SetCallback([](vtkObject*, unsigned long event, void* client, void* data) {
+      auto* self = static_cast<MessageLog*>(client);
+      const std::string text = data ? static_cast<const char*>(data) : "";
+      (event == vtkCommand::ErrorEvent ? self->Errors : self->Warnings).push_back(text);
+    });
+    object->AddObserver(vtkCommand::ErrorEvent, this->Callback);
+    object->AddObserver(vtkCommand::WarningEvent, this->Callback);
+  }
+  bool ErrorContains(const std::string& text) const
+  {
+    for (const auto& e : this->Errors)
+    {
+      if (e.find(text) != std::string::npos)
+      {
+        return true;
+      }
+    }
+    return false;
+  }
+  std::vector<std::string> Errors;
+  std::vector<std::string> Warnings;
+
+private:
+  vtkNew<vtkCallbackCommand> Callback;
+};
+
+vtkSmartPointer<vtkPolyData> MakeSphere(int resolution = 40)
+{
+  vtkNew<vtkSphereSource> sphere;
+  sphere->SetThetaResolution(resolution);
+  sphere->SetPhiResolution(resolution);
+  vtkNew<vtkPolyDataNormals> normals;
+  normals->SetInputConnection(sphere->GetOutputPort());
+  normals->SplittingOff();
+  normals->Update();
+  vtkSmartPointer<vtkPolyData> out = normals->GetOutput();
+  // Cell data: the input cell id, to follow triangles through the reordering.
+  vtkNew<vtkDoubleArray> cellIds;
+  cellIds->SetName("InputCellId");
+  for (vtkIdType c = 0; c < out->GetNumberOfCells(); ++c)
+  {
+    cellIds->InsertNextValue(static_cast<double>(c));
+  }
+  out->GetCellData()->AddArray(cellIds);
+  return out;
+}
+
+vtkSmartPointer<vtkPolyData> Build(vtkPolyData* input, vtkTOMBuilder* builder = nullptr)
+{
+  vtkSmartPointer<vtkTOMBuilder> local = builder;
+  if (!local)
+  {
+    local = vtkSmartPointer<vtkTOMBuilder>::New();
+  }
+  local->SetInputData(input);
+  local->Update();
+  vtkSmartPointer<vtkPolyData> out = local->GetOutput();
+  return out;
+}
+
+using Key = std::array<double, 3>;
+Key PointKey(vtkPolyData* data, vtkIdType id)
+{
+  Key k;
+  data->GetPoint(id, k.data());
+  return k;
+}
+
+vtkSmartPointer<vtkPolyData> Triangle()
+{
+  auto data = vtkSmartPointer<vtkPolyData>::New();
+  vtkNew<vtkPoints> points;
+  points->InsertNextPoint(0, 0, 0);
+  points->InsertNextPoint(1, 0, 0);
+  points->InsertNextPoint(0, 1, 0);
+  data->SetPoints(points);
+  vtkNew<vtkCellArray> polys;
+  polys->InsertNextCell({ 0, 1, 2 });
+  data->SetPolys(polys);
+  return data;
+}
+}
+
+TEST(vtkTOMBuilder, SphereGivesValidTOM)
+{
+  auto input = MakeSphere();
+  auto tom = Build(input);
+  vtkNew<vtkTOMFieldData> reader;
+  ASSERT_TRUE(reader->Read(tom)) << reader->GetErrorMessage();
+  EXPECT_EQ(tom->GetNumberOfPoints(), input->GetNumberOfPoints());
+  EXPECT_EQ(tom->GetNumberOfPolys(), input->GetNumberOfPolys());
+  auto* substitution = vtkTypeUInt32Array::SafeDownCast(
+    tom->GetPointData()->GetArray(vtkTOMFieldData::SubstitutionArrayName()));
+  ASSERT_NE(substitution, nullptr);
+  const vtkIdType base = reader->GetBaseVertexCount();
+  EXPECT_GE(base, 4);
+  EXPECT_LE(base, 8) << "a closed sphere should reduce to a handful of vertices";
+  for (vtkIdType i = 0; i < tom->GetNumberOfPoints(); ++i)
+  {
+    if (i < base)
+    {
+      ASSERT_EQ(substitution->GetValue(i), static_cast<uint32_t>(i));
+    }
+    else
+    {
+      ASSERT_LT(substitution->GetValue(i), static_cast<uint32_t>(i));
+    }
+  }
+  // Only the substitution is added per point: normals plus TOMSubstitution.
+  EXPECT_EQ(tom->GetPointData()->GetNumberOfArrays(), input->GetPointData()->GetNumberOfArrays() + 1);
+}
+
+TEST(vtkTOMBuilder, PointAndCellDataTravelWithTheirPointsAndTriangles)
+{
+  auto input = MakeSphere();
+  auto tom = Build(input);
+  ASSERT_EQ(tom->GetNumberOfPoints(), input->GetNumberOfPoints());
+  std::map<Key, vtkIdType> inputIds;
+  for (vtkIdType i = 0; i < input->GetNumberOfPoints(); ++i)
+  {
+    inputIds[PointKey(input, i)] = i;
+  }
+  vtkDataArray* inNormals = input->GetPointData()->GetNormals();
+  vtkDataArray* outNormals = tom->GetPointData()->GetNormals();
+  ASSERT_NE(outNormals, nullptr);
+  for (vtkIdType i = 0; i < tom->GetNumberOfPoints(); ++i)
+  {
+    auto found = inputIds.find(PointKey(tom, i));
+    ASSERT_NE(found, inputIds.end());
+    for (int c = 0; c < 3; ++c)
+    {
+      ASSERT_EQ(outNormals->GetComponent(i, c), inNormals->GetComponent(found->second, c));
+    }
+  }
+  // Each output triangle carries the id of the input triangle with the same corners.
+  vtkDataArray* cellIds = tom->GetCellData()->GetArray("InputCellId");
+  ASSERT_NE(cellIds, nullptr);
+  std::vector<bool> seen(input->GetNumberOfCells(), false);
+  for (vtkIdType c = 0; c < tom->GetNumberOfCells(); ++c)
+  {
+    const auto inCell = static_cast<vtkIdType>(cellIds->GetTuple1(c));
+    ASSERT_FALSE(seen[inCell]);
+    seen[inCell] = true;
+    vtkIdType nOut, nIn;
+    const vtkIdType* outIds;
+    const vtkIdType* inIds;
+    tom->GetCellPoints(c, nOut, outIds);
+    input->GetCellPoints(inCell, nIn, inIds);
+    ASSERT_EQ(nOut, 3);
+    ASSERT_EQ(nIn, 3);
+    for (int k = 0; k < 3; ++k)
+    {
+      ASSERT_EQ(PointKey(tom, outIds[k]), PointKey(input, inIds[k])) << "winding must be kept";
+    }
+  }
+}
+
+TEST(vtkTOMBuilder, EmptyInputIsAnError)
+{
+  vtkNew<vtkPolyData> empty;
+  vtkNew<vtkTOMBuilder> builder;
+  MessageLog log(builder);
+  auto out = Build(empty, builder);
+  EXPECT_TRUE(log.ErrorContains("Empty input"));
+  EXPECT_EQ(out->GetNumberOfPoints(), 0);
+}
+
+TEST(vtkTOMBuilder, LinesOnlyIsAnError)
+{
+  vtkNew<vtkPolyData> lines;
+  vtkNew<vtkPoints> points;
+  points->InsertNextPoint(0, 0, 0);
+  points->InsertNextPoint(1, 0, 0);
+  lines->SetPoints(points);
+  vtkNew<vtkCellArray> cells;
+  cells->InsertNextCell({ 0, 1 });
+  lines->SetLines(cells);
+  vtkNew<vtkTOMBuilder> builder;
+  MessageLog log(builder);
+  auto out = Build(lines, builder);
+  EXPECT_TRUE(log.ErrorContains("no surface cells"));
+  EXPECT_EQ(out->GetNumberOfCells(), 0);
+}
+
+TEST(vtkTOMBuilder, NaNCoordinateIsAnError)
+{
+  auto input = MakeSphere(10);
+  input->GetPoints()->SetPoint(5, std::numeric_limits<double>::quiet_NaN(), 0, 0);
+  vtkNew<vtkTOMBuilder> builder;
+  MessageLog log(builder);
+  auto out = Build(input, builder);
+  EXPECT_TRUE(log.ErrorContains("Point 5 has a non-finite"));
+  EXPECT_EQ(out->GetNumberOfPoints(), 0);
+}
+
+TEST(vtkTOMBuilder, QuadsAndStripsAreTriangulated)
+{
+  vtkNew<vtkPlaneSource> plane;
+  plane->SetResolution(10, 10);
+  plane->Update();
+  auto quads = Build(plane->GetOutput());
+  EXPECT_EQ(quads->GetNumberOfPolys(), 200);
+
+  vtkNew<vtkTriangleFilter> triangles;
+  triangles->SetInputConnection(plane->GetOutputPort());
+  vtkNew<vtkStripper> stripper;
+  stripper->SetInputConnection(triangles->GetOutputPort());
+  stripper->Update();
+  ASSERT_GT(stripper->GetOutput()->GetNumberOfStrips(), 0);
+  auto strips = Build(stripper->GetOutput());
+  EXPECT_EQ(strips->GetNumberOfPolys(), 200);
+  EXPECT_EQ(strips->GetNumberOfStrips(), 0);
+  vtkNew<vtkTOMFieldData> reader;
+  EXPECT_TRUE(reader->Read(strips)) << reader->GetErrorMessage();
+}
+
+TEST(vtkTOMBuilder, DuplicatePointsAreMergedAndDegenerateCellsDropped)
+{
+  // Two triangles sharing an edge through duplicated points, plus a triangle
+  // that collapses to a line once the duplicates are merged, plus a line cell.
+  vtkNew<vtkPolyData> data;
+  vtkNew<vtkPoints> points;
+  points->InsertNextPoint(0, 0, 0); // 0
+  points->InsertNextPoint(1, 0, 0); // 1
+  points->InsertNextPoint(0, 1, 0); // 2
+  points->InsertNextPoint(1, 0, 0); // 3 = 1
+  points->InsertNextPoint(0, 1, 0); // 4 = 2
+  points->InsertNextPoint(1, 1, 0); // 5
+  data->SetPoints(points);
+  vtkNew<vtkCellArray> polys;
+  polys->InsertNextCell({ 0, 1, 2 });
+  polys->InsertNextCell({ 3, 5, 4 });
+  polys->InsertNextCell({ 1, 3, 2 }); // degenerate after merging
+  data->SetPolys(polys);
+  vtkNew<vtkCellArray> lines;
+  lines->InsertNextCell({ 0, 5 });
+  data->SetLines(lines);
+  vtkNew<vtkTOMBuilder> builder;
+  MessageLog log(builder);
+  auto tom = Build(data, builder);
+  EXPECT_TRUE(log.Errors.empty());
+  EXPECT_GE(log.Warnings.size(), 2u);
+  EXPECT_EQ(tom->GetNumberOfPoints(), 4);
+  EXPECT_EQ(tom->GetNumberOfPolys(), 2);
+  EXPECT_EQ(builder->GetNumberOfMergedPoints(), 2);
+  EXPECT_EQ(builder->GetNumberOfDroppedCells(), 2);
+}
+
+TEST(vtkTOMBuilder, OneTriangle)
+{
+  auto tom = Build(Triangle());
+  vtkNew<vtkTOMFieldData> reader;
+  ASSERT_TRUE(reader->Read(tom)) << reader->GetErrorMessage();
+  EXPECT_EQ(reader->GetNumberOfTriangles(), 1);
+  EXPECT_EQ(reader->GetNumberOfVertices(), 3);
+}
+
+TEST(vtkTOMBuilder, NonManifoldEdgeBuilds)
+{
+  // Three triangles on the edge (0,1).
+  vtkNew<vtkPolyData> data;
+  vtkNew<vtkPoints> points;
+  points->InsertNextPoint(0, 0, 0);
+  points->InsertNextPoint(1, 0, 0);
+  points->InsertNextPoint(0.5, 1, 0);
+  points->InsertNextPoint(0.5, -1, 0);
+  points->InsertNextPoint(0.5, 0, 1);
+  data->SetPoints(points);
+  vtkNew<vtkCellArray> polys;
+  polys->InsertNextCell({ 0, 1, 2 });
+  polys->InsertNextCell({ 1, 0, 3 });
+  polys->InsertNextCell({ 0, 1, 4 });
+  data->SetPolys(polys);
+  auto tom = Build(data);
+  vtkNew<vtkTOMFieldData> reader;
+  ASSERT_TRUE(reader->Read(tom)) << reader->GetErrorMessage();
+  EXPECT_EQ(reader->GetNumberOfTriangles(), 3);
+}
+
+TEST(vtkTOMBuilder, AbortLeavesEmptyOutput)
+{
+  auto input = MakeSphere(60);
+  vtkNew<vtkTOMBuilder> builder;
+  vtkNew<vtkCallbackCommand> abort;
+  abort->SetCallback([](vtkObject* caller, unsigned long, void*, void*) {
+    auto* algorithm = static_cast<vtkTOMBuilder*>(caller);
+    if (algorithm->GetProgress() > 0.2)
+    {
+      algorithm->SetAbortExecute(1);
+    }
+  });
+  builder->AddObserver(vtkCommand::ProgressEvent, abort);
+  auto out = Build(input, builder);
+  EXPECT_EQ(out->GetNumberOfPoints(), 0);
+  EXPECT_EQ(out->GetNumberOfCells(), 0);
+}
+
+TEST(vtkTOMBuilder, SavedAndReadBackLosesNothing)
+{
+  auto tom = Build(MakeSphere());
+  const std::string path = std::string(TIMECRITICAL_TEST_OUTPUT_DIR) + "/sphere-tom.vtp";
+  vtkNew<vtkXMLPolyDataWriter> writer;
+  writer->SetFileName(path.c_str());
+  writer->SetInputData(tom);
+  // Inline binary: Debian 12's VTK 9.2 cannot read back appended-mode files
+  // with its patched expat (a platform bug, see README).
+  writer->SetDataModeToBinary();
+  ASSERT_EQ(writer->Write(), 1);
+  vtkNew<vtkXMLPolyDataReader> reader;
+  reader->SetFileName(path.c_str());
+  reader->Update();
+  vtkPolyData* back = reader->GetOutput();
+  vtkNew<vtkTOMFieldData> before;
+  vtkNew<vtkTOMFieldData> after;
+  ASSERT_TRUE(before->Read(tom));
+  ASSERT_TRUE(after->Read(back)) << after->GetErrorMessage();
+  EXPECT_EQ(before->GetMesh().Substitution, after->GetMesh().Substitution);
+  EXPECT_EQ(before->GetMesh().Triangles, after->GetMesh().Triangles);
+  EXPECT_EQ(before->GetBaseTriangleCount(), after->GetBaseTriangleCount());
+  const auto& a = before->GetMesh().ErrorCurve.GetSamples();
+  const auto& b = after->GetMesh().ErrorCurve.GetSamples();
+  ASSERT_EQ(a.size(), b.size());
+  for (size_t i = 0; i < a.size(); ++i)
+  {
+    EXPECT_EQ(a[i].Triangles, b[i].Triangles);
+    EXPECT_EQ(a[i].Error, b[i].Error);
+  }
+  for (vtkIdType i = 0; i < tom->GetNumberOfPoints(); ++i)
+  {
+    ASSERT_EQ(PointKey(tom, i), PointKey(back, i));
+  }
+  EXPECT_NE(back->GetPointData()->GetNormals(), nullptr);
+  EXPECT_NE(back->GetCellData()->GetArray("InputCellId"), nullptr);
+}
+
+TEST(vtkTOMBuilder, RealMeshWhenAvailable)
+{
+  const std::string path = std::string(TIMECRITICAL_SHARED_DATA_DIR) + "/cow.obj";
+  if (!std::ifstream(path).good())
+  {
+    GTEST_SKIP() << path << " not found";
+  }
+  vtkNew<vtkOBJReader> obj;
+  obj->SetFileName(path.c_str());
+  vtkNew<vtkTOMBuilder> builder;
+  builder->SetInputConnection(obj->GetOutputPort());
+  builder->Update();
+  vtkNew<vtkTOMFieldData> reader;
+  ASSERT_TRUE(reader->Read(builder->GetOutput())) << reader->GetErrorMessage();
+  EXPECT_EQ(reader->GetNumberOfTriangles(), 5804);
+  EXPECT_LE(reader->GetBaseVertexCount(), 16);
+}
+
+namespace
+{
+vtkSmartPointer<vtkPolyData> Extract(vtkPolyData* tom, vtkExtractTOMResolution* filter)
+{
+  filter->SetInputData(tom);
+  filter->Update();
+  vtkSmartPointer<vtkPolyData> out = filter->GetOutput();
+  return out;
+}
+}
+
+TEST(vtkExtractTOMResolution, ResolutionsArePrefixes)
+{
+  auto tom = Build(MakeSphere());
+  const vtkIdType full = tom->GetNumberOfPolys();
+  vtkIdType previousVertices = 0;
+  for (double r : { 0.05, 0.1, 0.25, 0.5, 1.0 })
+  {
+    vtkNew<vtkExtractTOMResolution> extract;
+    extract->SetResolution(r);
+    auto out = Extract(tom, extract);
+    const vtkIdType target = static_cast<vtkIdType>(std::lround(r * static_cast<double>(full)));
+    EXPECT_LE(out->GetNumberOfPolys(), std::max<vtkIdType>(target, 8)) << "r = " << r;
+    EXPECT_GE(out->GetNumberOfPolys(), target - 4) << "r = " << r;
+    EXPECT_GT(out->GetNumberOfPoints(), previousVertices);
+    previousVertices = out->GetNumberOfPoints();
+    EXPECT_EQ(out->GetNumberOfPolys(), extract->GetExtractedTriangleCount());
+    EXPECT_EQ(out->GetPointData()->GetArray(vtkTOMFieldData::SubstitutionArrayName()), nullptr);
+    EXPECT_NE(out->GetPointData()->GetNormals(), nullptr);
+    for (vtkIdType i = 0; i < out->GetNumberOfPoints(); ++i)
+    {
+      ASSERT_EQ(PointKey(out, i), PointKey(tom, i));
+    }
+    // Cell data is the prefix of the TOM's.
+    vtkDataArray* inIds = tom->GetCellData()->GetArray("InputCellId");
+    vtkDataArray* outIds = out->GetCellData()->GetArray("InputCellId");
+    ASSERT_NE(outIds, nullptr);
+    for (vtkIdType c = 0; c < out->GetNumberOfCells(); ++c)
+    {
+      ASSERT_EQ(outIds->GetTuple1(c), inIds->GetTuple1(c));
+    }
+  }
+  EXPECT_EQ(previousVertices, tom->GetNumberOfPoints());
+}
+
+TEST(vtkExtractTOMResolution, TargetTrianglesAndMaximumError)
+{
+  auto tom = Build(MakeSphere());
+  vtkNew<vtkExtractTOMResolution> extract;
+  extract->SetTargetTriangles(500);
+  auto out = Extract(tom, extract);
+  EXPECT_LE(out->GetNumberOfPolys(), 500);
+  EXPECT_GE(out->GetNumberOfPolys(), 496);
+  EXPECT_EQ(extract->GetSelectionMode(), vtkExtractTOMResolution::BY_TRIANGLE_COUNT);
+
+  vtkIdType previous = -1;
+  for (double e : { 1.0, 0.1, 0.01, 0.001, 0.0 })
+  {
+    extract->SetMaximumError(e);
+    out = Extract(tom, extract);
+    EXPECT_GE(out->GetNumberOfPolys(), previous) << "smaller error must not give fewer triangles";
+    EXPECT_LE(extract->GetExtractedError(), e + 1e-6);
+    previous = out->GetNumberOfPolys();
+  }
+  EXPECT_EQ(previous, tom->GetNumberOfPolys());
+}
+
+TEST(vtkExtractTOMResolution, GeomorphMovesTheLastVertex)
+{
+  auto tom = Build(MakeSphere());
+  vtkNew<vtkExtractTOMResolution> extract;
+  extract->SetResolution(0.5);
+  extract->SetGeomorphFactor(1.0);
+  auto rest = vtkSmartPointer<vtkPolyData>::New();
+  rest->DeepCopy(Extract(tom, extract));
+  extract->SetGeomorphFactor(0.0);
+  auto morphed = Extract(tom, extract);
+  const vtkIdType last = morphed->GetNumberOfPoints() - 1;
+  ASSERT_EQ(rest->GetNumberOfPoints(), morphed->GetNumberOfPoints());
+  EXPECT_NE(PointKey(rest, last), PointKey(morphed, last));
+  // At factor 0 the last vertex sits on another active vertex.
+  bool onAnother = false;
+  for (vtkIdType i = 0; i < last; ++i)
+  {
+    onAnother = onAnother || PointKey(morphed, i) == PointKey(morphed, last);
+  }
+  EXPECT_TRUE(onAnother);
+  for (vtkIdType i = 0; i < last; ++i)
+  {
+    ASSERT_EQ(PointKey(rest, i), PointKey(morphed, i));
+  }
+}
+
+TEST(vtkExtractTOMResolution, NonTOMInputIsAnError)
+{
+  vtkNew<vtkExtractTOMResolution> extract;
+  MessageLog log(extract);
+  auto out = Extract(MakeSphere(), extract);
+  EXPECT_TRUE(log.ErrorContains("TOMSubstitution"));
+  EXPECT_EQ(out->GetNumberOfPoints(), 0);
+}
+
+TEST(vtkExtractTOMResolution, CorruptedTOMIsAnError)
+{
+  auto tom = Build(MakeSphere());
+  // A substitution pointing to a later vertex would make chains cyclic.
+  auto corrupted = vtkSmartPointer<vtkPolyData>::New();
+  corrupted->DeepCopy(tom);
+  auto* substitution = vtkTypeUInt32Array::SafeDownCast(
+    corrupted->GetPointData()->GetArray(vtkTOMFieldData::SubstitutionArrayName()));
+  const vtkIdType n = corrupted->GetNumberOfPoints();
+  substitution->SetValue(n - 2, static_cast<uint32_t>(n - 1));
+  vtkNew<vtkExtractTOMResolution> extract;
+  MessageLog log(extract);
+  auto out = Extract(corrupted, extract);
+  ASSERT_FALSE(log.Errors.empty());
+  EXPECT_TRUE(log.ErrorContains("invalid TOM")) << log.Errors[0];
+  EXPECT_EQ(out->GetNumberOfPoints(), 0);
+
+  // Counts that disagree with the data.
+  corrupted->DeepCopy(tom);
+  auto* counts = vtkDataArray::SafeDownCast(
+    corrupted->GetFieldData()->GetAbstractArray(vtkTOMFieldData::CountsArrayName()));
+  counts->SetTuple1(1, counts->GetTuple1(1) + 1);
+  vtkNew<vtkExtractTOMResolution> extract2;
+  MessageLog log2(extract2);
+  Extract(corrupted, extract2);
+  EXPECT_TRUE(log2.ErrorContains("triangles")) << (log2.Errors.empty() ? "" : log2.Errors[0]);
+
+  // Triangles out of prefix order: swap the first and the last triangle.
+  corrupted->DeepCopy(tom);
+  vtkNew<vtkIdList> first, last;
+  corrupted->GetCellPoints(0, first);
+  corrupted->GetCellPoints(corrupted->GetNumberOfCells() - 1, last);
+  corrupted->ReplaceCell(0, 3, last->GetPointer(0));
+  corrupted->ReplaceCell(corrupted->GetNumberOfCells() - 1, 3, first->GetPointer(0));
+  vtkNew<vtkExtractTOMResolution> extract3;
+  MessageLog log3(extract3);
+  Extract(corrupted, extract3);
+  EXPECT_TRUE(log3.ErrorContains("invalid TOM"));
+}
+
+TEST(vtkExtractTOMResolution, NaNResolutionIsReported)
+{
+  vtkNew<vtkExtractTOMResolution> extract;
+  MessageLog log(extract);
+  extract->SetResolution(std::numeric_limits<double>::quiet_NaN());
+  EXPECT_TRUE(log.ErrorContains("NaN"));
+  EXPECT_EQ(extract->GetResolution(), 0.0);
+}

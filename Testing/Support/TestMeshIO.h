@@ -1,0 +1,190 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#ifndef timecritical_TestMeshIO_h
+#define timecritical_TestMeshIO_h
+
+/**
+ * VTK-free triangle mesh loading, welding, checking and generation for the
+ * GoogleTest tests and C++ benchmarks of the algorithm cores.
+ *
+ * LoadMesh() reads Wavefront OBJ and PLY (ascii, binary little/big endian,
+ * `face` polygon lists and `tristrips` triangle strips, which vtkPLYReader
+ * cannot decode). Errors throw std::runtime_error naming the file and the
+ * line (OBJ, ascii PLY header/body) or element (binary PLY).
+ *
+ * The real meshes of the project live outside the repository in the shared
+ * data folder (see ../shared/data/README.md); FindSharedMesh() says whether
+ * one is available so that tests can skip when the folder is absent.
+ */
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+// CMake defines this (absolute path) for every target linking
+// TimeCriticalTestSupport; the fallback is relative to the working directory.
+#ifndef TIMECRITICAL_SHARED_DATA_DIR
+#define TIMECRITICAL_SHARED_DATA_DIR "../shared/data"
+#endif
+
+namespace timecritical
+{
+namespace testing
+{
+/// Indexed triangle mesh in plain arrays.
+struct TriangleMesh
+{
+  std::vector<double> Points;      ///< x, y, z per point
+  std::vector<uint32_t> Triangles; ///< three point ids per triangle
+
+  std::size_t NumberOfPoints() const { return this->Points.size() / 3; }
+  std::size_t NumberOfTriangles() const { return this->Triangles.size() / 3; }
+};
+
+//------------------------------------------------------------------------------
+// Shared data folder
+
+/// Location of a mesh of the shared data folder.
+struct SharedMesh
+{
+  std::string Path;       ///< TIMECRITICAL_SHARED_DATA_DIR + "/" + name
+  bool Available = false; ///< true when that path is a readable regular file
+};
+
+/// The shared data folder (TIMECRITICAL_SHARED_DATA_DIR).
+std::string SharedDataDirectory();
+
+/// Path of a named shared mesh (e.g. "igea.ply") and whether it exists.
+SharedMesh FindSharedMesh(const std::string& name);
+
+//------------------------------------------------------------------------------
+// Reading and writing
+
+/**
+ * Load a triangle mesh, dispatching on the (case-insensitive) extension:
+ * `.obj` -> LoadOBJ(), `.ply` -> LoadPLY(). Throws std::runtime_error on an
+ * unknown extension, a missing or unreadable file, malformed data or
+ * out-of-range indices. Polygons are fan-triangulated; points are kept as in
+ * the file (unused and duplicate points included, nothing is welded).
+ */
+TriangleMesh LoadMesh(const std::string& path);
+
+/**
+ * Wavefront OBJ: `v x y z [w ...]` and `f` lines with `v`, `v/vt`, `v//vn` or
+ * `v/vt/vn` corners, 1-based or negative (relative to the vertices read so
+ * far) position indices, `\` line continuation. Other statements (vt, vn, g,
+ * o, s, usemtl, l, p, ...) and `#` comments are ignored.
+ */
+TriangleMesh LoadOBJ(const std::string& path);
+
+/**
+ * PLY (ascii, binary_little_endian, binary_big_endian): `vertex` x, y, z of
+ * any scalar type (other properties skipped); `face` lists named
+ * vertex_indices or vertex_index (any count/index types; fan-triangulated);
+ * `tristrips` lists named vertex_indices (a -1 entry restarts the strip;
+ * winding alternates along a strip; degenerate triangles are dropped).
+ * Other elements and properties are skipped.
+ */
+TriangleMesh LoadPLY(const std::string& path);
+
+/// Write `v` and `f` lines (17 significant digits, exact round trip).
+void SaveOBJ(const TriangleMesh& mesh, const std::string& path);
+
+/// Write a PLY with double x, y, z and `property list uchar int vertex_indices`
+/// faces, binary little endian or ascii.
+void SavePLY(const TriangleMesh& mesh, const std::string& path, bool binary = true);
+
+//------------------------------------------------------------------------------
+// Cleaning
+
+/**
+ * Merge points with coincident positions (bitwise equal up to the sign of
+ * zero when tolerance is 0; otherwise within Euclidean distance `tolerance`
+ * of a representative, greedily in point order, using a hash grid). The
+ * output keeps the first point of each cluster, in input order (unused points
+ * included), and drops triangles that become degenerate (two equal ids).
+ * When oldToNew is given it receives the new id of each input point.
+ */
+TriangleMesh WeldPoints(
+  const TriangleMesh& mesh, double tolerance = 0.0, std::vector<uint32_t>* oldToNew = nullptr);
+
+/// Drop points no triangle uses (order of the others kept).
+TriangleMesh RemoveUnusedPoints(const TriangleMesh& mesh);
+
+//------------------------------------------------------------------------------
+// Checking
+
+/// Combinatorial summary of a mesh, for assertions in tests.
+struct MeshTopology
+{
+  std::size_t NumberOfPoints = 0;
+  std::size_t NumberOfUsedPoints = 0;
+  std::size_t NumberOfUnusedPoints = 0;
+  std::size_t NumberOfTriangles = 0;
+  std::size_t NumberOfDegenerateTriangles = 0; ///< two or three equal ids
+  std::size_t NumberOfEdges = 0;               ///< distinct undirected edges
+  std::size_t NumberOfBoundaryEdges = 0;       ///< used by one triangle
+  std::size_t NumberOfNonManifoldEdges = 0;    ///< used by more than two triangles
+  std::size_t NumberOfInconsistentEdges = 0;   ///< used twice in the same direction
+  std::size_t NumberOfNonManifoldVertices = 0; ///< pinch vertices: >1 triangle fan
+  std::size_t NumberOfBoundaryLoops = 0;       ///< components of the boundary edges
+  std::size_t NumberOfComponents = 0;          ///< components of the used points
+  long long EulerCharacteristic = 0;           ///< used points - edges + triangles
+
+  /// Every edge shared by exactly two triangles.
+  bool IsClosed() const
+  {
+    return this->NumberOfBoundaryEdges == 0 && this->NumberOfNonManifoldEdges == 0;
+  }
+  /// Every two-triangle edge is traversed once in each direction.
+  bool IsConsistentlyOriented() const { return this->NumberOfInconsistentEdges == 0; }
+};
+
+/// Compute the MeshTopology of a mesh (degenerate triangles are counted but
+/// contribute no edges). O(T log T).
+MeshTopology ComputeTopology(const TriangleMesh& mesh);
+
+/// Signed enclosed volume (positive for a closed mesh wound counter-clockwise
+/// seen from outside).
+double SignedVolume(const TriangleMesh& mesh);
+
+/// Sum of the triangle areas.
+double SurfaceArea(const TriangleMesh& mesh);
+
+//------------------------------------------------------------------------------
+// Generators: clean meshes (no duplicate points, no degenerate triangles,
+// consistent counter-clockwise winding seen from outside / from +z).
+
+/// Open planar grid of nx x ny quads (two triangles each) over [0,1]^2 in the
+/// z = 0 plane, normals +z: (nx+1)(ny+1) points, 2 nx ny triangles, one
+/// boundary loop, Euler characteristic 1. Requires nx, ny >= 1.
+TriangleMesh MakeGrid(std::size_t nx, std::size_t ny);
+
+/// Closed unit icosphere: the icosahedron with each triangle split into four
+/// `subdivisions` times, points projected on the sphere:
+/// 10 * 4^s + 2 points, 20 * 4^s triangles, Euler characteristic 2.
+TriangleMesh MakeSphere(std::size_t subdivisions);
+
+/// Closed unit latitude/longitude sphere with single pole points:
+/// (latitudes - 1) * longitudes + 2 points, 2 (latitudes - 1) longitudes
+/// triangles. Requires latitudes >= 2, longitudes >= 3.
+TriangleMesh MakeUVSphere(std::size_t latitudes, std::size_t longitudes);
+
+/// Closed torus around the z axis (major radius 1, minor radius 0.35) with
+/// n segments around the axis and m around the tube: n m points, 2 n m
+/// triangles, Euler characteristic 0. A non-zero noiseSeed displaces every
+/// point along its normal by a deterministic pseudo-random amount in
+/// [-noiseAmplitude, noiseAmplitude] * minor radius (amplitude < 1 keeps the
+/// surface embedded). Requires n, m >= 3.
+TriangleMesh MakeTorus(
+  std::size_t n, std::size_t m, uint32_t noiseSeed = 0, double noiseAmplitude = 0.1);
+
+/// Closed cube [-0.5, 0.5]^3 with each face split into n x n quads (two
+/// triangles each); points on edges and corners are shared by the faces, so
+/// the 12 cube edges are sharp 90-degree creases of a single closed surface:
+/// 6 n^2 + 2 points, 12 n^2 triangles, Euler characteristic 2. Requires n >= 1.
+TriangleMesh MakeCube(std::size_t n);
+}
+}
+
+#endif
