@@ -47,10 +47,13 @@ public:
   const std::vector<Sample>& GetSamples() const { return this->Samples; }
   bool IsEmpty() const { return this->Samples.empty(); }
 
-  /// Interpolated error of the mesh with the given triangle count.
+  /// Interpolated error of the mesh with the given triangle count (clamped to the
+  /// first and last samples; 0 for an empty curve).
   double GetErrorForTriangles(uint32_t triangles) const;
 
-  /// Smallest triangle count whose interpolated error is at most maxError.
+  /// Smallest triangle count whose interpolated error is at most maxError: the
+  /// first sample's count when maxError reaches its error, the full count when
+  /// maxError is negative or NaN, 0 for an empty curve.
   uint32_t GetTrianglesForError(double maxError) const;
 
   /// Empty string when the samples are well formed, otherwise what is wrong.

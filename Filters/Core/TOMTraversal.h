@@ -39,15 +39,19 @@ public:
    */
   uint32_t GetVertexCountForTriangles(uint32_t triangles) const;
 
-  /// Triangle count for a resolution r in [0,1] (fraction of the full triangle count).
+  /// Triangle count for a resolution r in [0,1] (fraction of the full triangle count,
+  /// rounded; r is clamped to [0,1] and NaN gives 0, the cheapest answer).
   uint32_t GetTrianglesForResolution(double r) const;
 
   /**
    * Writes the triangles (3 active vertex ids each) of the mesh with
    * `vertexCount` active vertices into out, which holds `capacity` triangles.
    * Returns the number of triangles of that mesh (may exceed capacity, in which
-   * case only `capacity` were written). chainSteps, when given, receives the
-   * number of substitution steps taken (the paper's extra vertices).
+   * case only `capacity` were written). Entries of out past the returned count
+   * (but within capacity) may be used as scratch space. chainSteps, when given,
+   * receives the number of substitution steps taken over the corners of the
+   * returned triangles (the paper's extra vertices). Vertex counts are clamped
+   * to [base vertex count, number of vertices].
    */
   uint32_t Extract(uint32_t vertexCount, uint32_t* out, uint32_t capacity,
     uint64_t* chainSteps = nullptr) const;
@@ -63,6 +67,8 @@ public:
    * Geomorph of the last active vertex (v = vertexCount - 1): its attribute
    * interpolated between its substitution target at this resolution (factor 0)
    * and its own value (factor 1). attributes holds `components` values per vertex.
+   * vertexCount is clamped to [1, N], factor to [0, 1] (NaN gives 1); base
+   * vertices do not move.
    */
   void Geomorph(uint32_t vertexCount, double factor, const float* attributes, int components,
     float* result) const;
