@@ -33,9 +33,11 @@ ImageComparison CompareImages(
   }
   const auto stats = OIIO::ImageBufAlgo::compare(a, b, static_cast<float>(pixelThreshold),
     static_cast<float>(pixelThreshold), 0.0f, 0.0f);
-  if (stats.error)
+  // stats.error only says that some value exceeded the failure threshold,
+  // which is for the caller to judge; a real failure shows on the buffers.
+  if (a.has_error() || b.has_error())
   {
-    result.Message = "OpenImageIO compare failed";
+    result.Message = "OpenImageIO compare failed: " + a.geterror() + b.geterror();
     return result;
   }
   result.Loaded = true;

@@ -1737,7 +1737,7 @@ TriangleMesh MakeUVSphere(std::size_t latitudes, std::size_t longitudes)
   Require((latitudes - 1) * longitudes + 2 <= MaxPointId, "MakeUVSphere: too many points");
   const double pi = 3.14159265358979323846;
   TriangleMesh mesh;
-  mesh.Points.insert(mesh.Points.end(), { 0.0, 0.0, 1.0 });
+  mesh.Points = { 0.0, 0.0, 1.0 }; // north pole (assignment: GCC 12 -O3 misreads insert into an empty vector)
   for (std::size_t k = 1; k < latitudes; ++k)
   {
     const double theta = pi * static_cast<double>(k) / static_cast<double>(latitudes);
