@@ -1,0 +1,1421 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * TOMBenchmark: figures of the Totally Ordered Mesh against its goals.
+ *
+ *  1. build speed of timecritical::TOMBuilder (full reduction) next to
+ *     vtkQuadricDecimation and meshopt_simplify, both to 10% of the triangles;
+ *  2. memory of a TOM against plain face-vertex form;
+ *  3. traversal rate and extra vertices walked by TOMTraversal::Extract;
+ *  4. Hausdorff distance of TOM resolutions against vtkQuadricDecimation at the
+ *     same triangle count (and meshopt_simplify, which like the TOM keeps a subset
+ *     of the input vertices, as a reference without goal).
+ *
+ * Prints one table per section and writes everything to JSON. Missed goals
+ * are reported, not failed: the exit status is nonzero only for errors
+ * (unreadable input, exceptions, invalid results).
+ *
+ *   TOMBenchmark [--quick] [--json FILE] [--data DIR] [--hausdorff-all]
+ */
+#include "TOMBuilder.h"
+#include "TOMMesh.h"
+#include "TOMTraversal.h"
+#include "TOMValidator.h"
+#include "TestMeshIO.h"
+
+#include <meshoptimizer.h>
+
+#include <vtkCellArray.h>
+#include <vtkCellArrayIterator.h>
+#include <vtkHausdorffDistancePointSetFilter.h>
+#include <vtkIdTypeArray.h>
+#include <vtkLoopSubdivisionFilter.h>
+#include <vtkNew.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+#include <vtkQuadricDecimation.h>
+#include <vtkSmartPointer.h>
+#include <vtkVersion.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdarg>
+#include <cstdint>
+#include <cstdio>
+#include <ctime>
+#include <exception>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <iostream>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <thread>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+namespace
+{
+using timecritical::TOMBuilder;
+using timecritical::TOMBuildResult;
+using timecritical::TOMMesh;
+using timecritical::TOMTraversal;
+using timecritical::testing::TriangleMesh;
+
+//------------------------------------------------------------------------------
+// Settings
+
+struct Settings
+{
+  bool Quick = false;
+  std::string JsonPath = "tom-benchmark.json";
+  std::string DataDirectory = TIMECRITICAL_SHARED_DATA_DIR;
+  int BuildRuns = 3;               ///< median of this many runs per builder...
+  double SlowRunSeconds = 10.0;    ///< ...or one run when the first takes longer
+  double MinMeasureSeconds = 0.05; ///< per traversal measurement
+  int TraversalMeasurements = 5;   ///< median of this many measurements
+  /// Section 4 is skipped above this many triangles: vtkHausdorffDistancePointSetFilter
+  /// is serial (one vtkCellLocator query per point) and needs several minutes for the
+  /// 1M-triangle mesh on a 2-core reference machine. --hausdorff-all lifts the limit.
+  size_t HausdorffMaxTriangles = 500000;
+};
+
+const std::vector<double> TraversalResolutions = { 1.0, 0.5, 0.25, 0.1, 0.05 };
+const std::vector<double> HausdorffResolutions = { 0.5, 0.25, 0.1 };
+constexpr double ComparisonFraction = 0.1; ///< quadric and meshopt keep 10% of the triangles
+
+//------------------------------------------------------------------------------
+// Timing: every figure goes through Seconds().
+
+using Clock = std::chrono::steady_clock;
+
+template <class Function>
+double Seconds(Function&& function)
+{
+  const Clock::time_point start = Clock::now();
+  function();
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+double Median(std::vector<double> values)
+{
+  if (values.empty())
+  {
+    return std::numeric_limits<double>::quiet_NaN();
+  }
+  std::sort(values.begin(), values.end());
+  const size_t middle = values.size() / 2;
+  return values.size() % 2 ? values[middle] : 0.5 * (values[middle - 1] + values[middle]);
+}
+
+/// Wall-clock seconds of each run and their median.
+struct Timing
+{
+  std::vector<double> Runs;
+  double Median = 0.0;
+};
+
+/// Runs `function` up to settings.BuildRuns times (once when the first run is slow).
+template <class Function>
+Timing TimeRuns(const Settings& settings, Function&& function)
+{
+  Timing timing;
+  for (int run = 0; run < settings.BuildRuns; ++run)
+  {
+    timing.Runs.push_back(Seconds(function));
+    if (timing.Runs.front() > settings.SlowRunSeconds)
+    {
+      break;
+    }
+  }
+  timing.Median = Median(timing.Runs);
+  return timing;
+}
+
+/**
+ * Seconds per call of a fast `function`: the call is repeated enough times
+ * that one measurement takes at least settings.MinMeasureSeconds (the
+ * calibration doubles as warm-up), then the median of
+ * settings.TraversalMeasurements measurements is returned.
+ */
+template <class Function>
+double SecondsPerCall(const Settings& settings, Function&& function)
+{
+  uint64_t repeats = 1;
+  const auto repeated = [&]() {
+    for (uint64_t i = 0; i < repeats; ++i)
+    {
+      function();
+    }
+  };
+  for (double elapsed = Seconds(repeated); elapsed < settings.MinMeasureSeconds;
+       elapsed = Seconds(repeated))
+  {
+    const double scale = 1.25 * settings.MinMeasureSeconds / std::max(elapsed, 1e-7);
+    repeats = static_cast<uint64_t>(
+      std::ceil(static_cast<double>(repeats) * std::min(std::max(scale, 2.0), 100.0)));
+  }
+  std::vector<double> perCall;
+  for (int i = 0; i < settings.TraversalMeasurements; ++i)
+  {
+    perCall.push_back(Seconds(repeated) / static_cast<double>(repeats));
+  }
+  return Median(perCall);
+}
+
+/// Million triangles per second.
+double Mtris(double triangles, double seconds)
+{
+  return seconds > 0.0 ? triangles / seconds * 1e-6 : std::numeric_limits<double>::infinity();
+}
+
+//------------------------------------------------------------------------------
+// Text formatting
+
+__attribute__((format(printf, 1, 2))) std::string Format(const char* format, ...)
+{
+  char buffer[256];
+  va_list args;
+  va_start(args, format);
+  std::vsnprintf(buffer, sizeof(buffer), format, args);
+  va_end(args);
+  return buffer;
+}
+
+std::string Fixed(double value, int digits)
+{
+  return Format("%.*f", digits, value);
+}
+
+std::string Count(uint64_t value)
+{
+  return std::to_string(value);
+}
+
+/// A plain-text table: first column left aligned, the others right aligned.
+class Table
+{
+public:
+  explicit Table(std::vector<std::string> headers)
+    : Rows{ std::move(headers) }
+  {
+  }
+
+  void Add(std::vector<std::string> cells) { this->Rows.push_back(std::move(cells)); }
+
+  void Print(std::ostream& os, const std::string& title) const
+  {
+    std::vector<size_t> widths;
+    for (const auto& row : this->Rows)
+    {
+      widths.resize(std::max(widths.size(), row.size()), 0);
+      for (size_t c = 0; c < row.size(); ++c)
+      {
+        widths[c] = std::max(widths[c], row[c].size());
+      }
+    }
+    os << "\n== " << title << " ==\n";
+    for (size_t r = 0; r < this->Rows.size(); ++r)
+    {
+      const auto& row = this->Rows[r];
+      for (size_t c = 0; c < row.size(); ++c)
+      {
+        const std::string padding(widths[c] - row[c].size(), ' ');
+        os << (c ? "  " : "") << (c ? padding + row[c] : row[c] + padding);
+      }
+      os << "\n";
+      if (r == 0)
+      {
+        size_t total = 0;
+        for (size_t w : widths)
+        {
+          total += w + 2;
+        }
+        os << std::string(total - 2, '-') << "\n";
+      }
+    }
+  }
+
+private:
+  std::vector<std::vector<std::string>> Rows;
+};
+
+//------------------------------------------------------------------------------
+// JSON: a small ordered tree, enough for the report.
+
+class Json
+{
+public:
+  Json() = default;
+  Json(bool value)
+    : Type(Kind::Bool)
+    , Flag(value)
+  {
+  }
+  template <class T, std::enable_if_t<std::is_arithmetic<T>::value, int> = 0>
+  Json(T value)
+    : Type(Kind::Number)
+    , Number(static_cast<double>(value))
+  {
+  }
+  Json(std::string value)
+    : Type(Kind::String)
+    , Text(std::move(value))
+  {
+  }
+  Json(const char* value)
+    : Json(std::string(value))
+  {
+  }
+
+  static Json Object() { return Json(Kind::Object); }
+  static Json Array() { return Json(Kind::Array); }
+
+  Json& Set(const std::string& key, Json value)
+  {
+    this->Keys.push_back(key);
+    this->Items.push_back(std::move(value));
+    return *this;
+  }
+
+  Json& Push(Json value)
+  {
+    this->Items.push_back(std::move(value));
+    return *this;
+  }
+
+  void Write(std::ostream& os, int indent = 0) const
+  {
+    switch (this->Type)
+    {
+      case Kind::Null:
+        os << "null";
+        break;
+      case Kind::Bool:
+        os << (this->Flag ? "true" : "false");
+        break;
+      case Kind::Number:
+        os << (std::isfinite(this->Number) ? Format("%.12g", this->Number) : "null");
+        break;
+      case Kind::String:
+        WriteString(os, this->Text);
+        break;
+      case Kind::Array:
+      case Kind::Object:
+        this->WriteContainer(os, indent);
+        break;
+    }
+  }
+
+private:
+  enum class Kind
+  {
+    Null,
+    Bool,
+    Number,
+    String,
+    Array,
+    Object
+  };
+
+  explicit Json(Kind kind)
+    : Type(kind)
+  {
+  }
+
+  static void WriteString(std::ostream& os, const std::string& text)
+  {
+    os << '"';
+    for (const char ch : text)
+    {
+      if (ch == '"' || ch == '\\')
+      {
+        os << '\\' << ch;
+      }
+      else if (static_cast<unsigned char>(ch) < 0x20)
+      {
+        os << Format("\\u%04x", static_cast<unsigned>(ch));
+      }
+      else
+      {
+        os << ch;
+      }
+    }
+    os << '"';
+  }
+
+  void WriteContainer(std::ostream& os, int indent) const
+  {
+    const bool object = this->Type == Kind::Object;
+    os << (object ? '{' : '[');
+    for (size_t i = 0; i < this->Items.size(); ++i)
+    {
+      os << (i ? ",\n" : "\n") << std::string(indent + 2, ' ');
+      if (object)
+      {
+        WriteString(os, this->Keys[i]);
+        os << ": ";
+      }
+      this->Items[i].Write(os, indent + 2);
+    }
+    if (!this->Items.empty())
+    {
+      os << "\n" << std::string(indent, ' ');
+    }
+    os << (object ? '}' : ']');
+  }
+
+  Kind Type = Kind::Null;
+  bool Flag = false;
+  double Number = 0.0;
+  std::string Text;
+  std::vector<std::string> Keys;
+  std::vector<Json> Items;
+};
+
+Json ToJson(const Timing& timing)
+{
+  Json runs = Json::Array();
+  for (double seconds : timing.Runs)
+  {
+    runs.Push(seconds);
+  }
+  return Json::Object().Set("runs_s", std::move(runs)).Set("median_s", timing.Median);
+}
+
+//------------------------------------------------------------------------------
+// Goals: each check is logged for the summary and the JSON.
+
+struct Goal
+{
+  std::string Name;
+  double Threshold;
+  bool AtLeast; ///< met when value >= Threshold, otherwise when value <= Threshold
+  std::string Unit;
+
+  std::string Text() const
+  {
+    std::ostringstream os;
+    os << (this->AtLeast ? ">= " : "<= ") << this->Threshold << this->Unit;
+    return os.str();
+  }
+  bool IsMet(double value) const
+  {
+    return this->AtLeast ? value >= this->Threshold : value <= this->Threshold;
+  }
+};
+
+const Goal BuildGoal{ "TOM build rate", 1.0, true, " Mtri/s" };
+const Goal MemoryGoal{ "TOM memory overhead over face-vertex", 8.4, false, " %" };
+const Goal TraversalGoal{ "traversal rate", 100.0, true, " Mtri/s" };
+const Goal ChainGoal{ "extra vertices traversed", 75.0, false, " %" };
+const Goal HausdorffGoal{ "Hausdorff TOM / quadric", 1.10, false, "" };
+const std::vector<const Goal*> AllGoals = { &BuildGoal, &MemoryGoal, &TraversalGoal, &ChainGoal,
+  &HausdorffGoal };
+
+class GoalLog
+{
+public:
+  /// Records the check and returns the table cells: goal text and met/MISSED.
+  std::vector<std::string> Check(const Goal& goal, double value, const std::string& where)
+  {
+    const bool met = goal.IsMet(value);
+    this->Entries.push_back({ &goal, value, where, met });
+    return { goal.Text(), met ? "met" : "MISSED" };
+  }
+
+  void PrintSummary(std::ostream& os) const
+  {
+    Table table({ "goal", "target", "met", "checks", "worst", "worst at", "status" });
+    for (const Goal* goal : AllGoals)
+    {
+      size_t met = 0, checks = 0;
+      const Entry* worst = nullptr;
+      for (const Entry& entry : this->Entries)
+      {
+        if (entry.Which != goal)
+        {
+          continue;
+        }
+        ++checks;
+        met += entry.Met;
+        const bool worse = worst &&
+          (goal->AtLeast ? entry.Value < worst->Value : entry.Value > worst->Value);
+        worst = (!worst || worse) ? &entry : worst;
+      }
+      if (worst)
+      {
+        table.Add({ goal->Name, goal->Text(), Count(met), Count(checks), Fixed(worst->Value, 3),
+          worst->Where, met == checks ? "met" : "MISSED" });
+      }
+    }
+    table.Print(os, "Summary of goals");
+  }
+
+  Json ToJson() const
+  {
+    Json checks = Json::Array();
+    for (const Entry& entry : this->Entries)
+    {
+      checks.Push(Json::Object()
+                    .Set("goal", entry.Which->Name)
+                    .Set("target", entry.Which->Text())
+                    .Set("where", entry.Where)
+                    .Set("value", entry.Value)
+                    .Set("met", entry.Met));
+    }
+    return checks;
+  }
+
+  size_t Missed() const
+  {
+    return static_cast<size_t>(std::count_if(
+      this->Entries.begin(), this->Entries.end(), [](const Entry& e) { return !e.Met; }));
+  }
+
+private:
+  struct Entry
+  {
+    const Goal* Which;
+    double Value;
+    std::string Where;
+    bool Met;
+  };
+  std::vector<Entry> Entries;
+};
+
+/// Throws std::runtime_error with `what` unless `condition` holds.
+void Require(bool condition, const std::string& what)
+{
+  if (!condition)
+  {
+    throw std::runtime_error("invalid result: " + what);
+  }
+}
+
+//------------------------------------------------------------------------------
+// Meshes: TriangleMesh <-> vtkPolyData
+
+vtkSmartPointer<vtkPolyData> ToPolyData(const TriangleMesh& mesh)
+{
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  points->SetNumberOfPoints(static_cast<vtkIdType>(mesh.NumberOfPoints()));
+  for (size_t i = 0; i < mesh.NumberOfPoints(); ++i)
+  {
+    points->SetPoint(static_cast<vtkIdType>(i), &mesh.Points[3 * i]);
+  }
+  vtkNew<vtkIdTypeArray> offsets;
+  vtkNew<vtkIdTypeArray> connectivity;
+  offsets->SetNumberOfValues(static_cast<vtkIdType>(mesh.NumberOfTriangles() + 1));
+  connectivity->SetNumberOfValues(static_cast<vtkIdType>(mesh.Triangles.size()));
+  for (size_t t = 0; t <= mesh.NumberOfTriangles(); ++t)
+  {
+    offsets->SetValue(static_cast<vtkIdType>(t), static_cast<vtkIdType>(3 * t));
+  }
+  for (size_t i = 0; i < mesh.Triangles.size(); ++i)
+  {
+    connectivity->SetValue(static_cast<vtkIdType>(i), mesh.Triangles[i]);
+  }
+  vtkNew<vtkCellArray> polys;
+  polys->SetData(offsets, connectivity);
+  auto poly = vtkSmartPointer<vtkPolyData>::New();
+  poly->SetPoints(points);
+  poly->SetPolys(polys);
+  return poly;
+}
+
+/// Triangles only (the polys of a triangle mesh); anything else throws.
+TriangleMesh FromPolyData(vtkPolyData* poly)
+{
+  Require(poly->GetNumberOfStrips() == 0 && poly->GetNumberOfLines() == 0,
+    "expected a polydata of triangles only");
+  TriangleMesh mesh;
+  mesh.Points.resize(3 * static_cast<size_t>(poly->GetNumberOfPoints()));
+  for (vtkIdType i = 0; i < poly->GetNumberOfPoints(); ++i)
+  {
+    poly->GetPoint(i, &mesh.Points[3 * static_cast<size_t>(i)]);
+  }
+  mesh.Triangles.reserve(3 * static_cast<size_t>(poly->GetNumberOfPolys()));
+  auto cells = vtk::TakeSmartPointer(poly->GetPolys()->NewIterator());
+  for (cells->GoToFirstCell(); !cells->IsDoneWithTraversal(); cells->GoToNextCell())
+  {
+    vtkIdType size = 0;
+    const vtkIdType* ids = nullptr;
+    cells->GetCurrentCell(size, ids);
+    Require(size == 3, "expected triangles, got a polygon of " + std::to_string(size));
+    mesh.Triangles.insert(mesh.Triangles.end(), ids, ids + 3);
+  }
+  return mesh;
+}
+
+double BoundingBoxDiagonal(const TriangleMesh& mesh)
+{
+  double lo[3], hi[3];
+  std::fill(lo, lo + 3, std::numeric_limits<double>::infinity());
+  std::fill(hi, hi + 3, -std::numeric_limits<double>::infinity());
+  for (size_t i = 0; i < mesh.Points.size(); ++i)
+  {
+    lo[i % 3] = std::min(lo[i % 3], mesh.Points[i]);
+    hi[i % 3] = std::max(hi[i % 3], mesh.Points[i]);
+  }
+  return std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
+    (hi[2] - lo[2]) * (hi[2] - lo[2]));
+}
+
+//------------------------------------------------------------------------------
+// The meshes
+
+/// A benchmark input: welded, without unused points.
+struct InputMesh
+{
+  std::string Name;
+  std::string Origin;
+  TriangleMesh Mesh;
+  vtkSmartPointer<vtkPolyData> Poly;
+  double Diagonal = 0.0;
+};
+
+InputMesh MakeInput(std::string name, std::string origin, const TriangleMesh& raw)
+{
+  namespace tt = timecritical::testing;
+  InputMesh input;
+  input.Name = std::move(name);
+  input.Origin = std::move(origin);
+  input.Mesh = tt::RemoveUnusedPoints(tt::WeldPoints(raw));
+  input.Poly = ToPolyData(input.Mesh);
+  input.Diagonal = BoundingBoxDiagonal(input.Mesh);
+  Require(input.Mesh.NumberOfTriangles() > 0, input.Name + " has no triangles");
+  return input;
+}
+
+/// One level of Loop subdivision (vtkLoopSubdivisionFilter).
+TriangleMesh LoopSubdivide(vtkPolyData* poly)
+{
+  vtkNew<vtkLoopSubdivisionFilter> loop;
+  loop->SetNumberOfSubdivisions(1);
+  loop->SetInputData(poly);
+  loop->Update();
+  return FromPolyData(loop->GetOutput());
+}
+
+/// An input mesh to benchmark, read or made only when its turn comes.
+struct MeshSource
+{
+  std::string Name;
+  std::string Origin;
+  std::function<TriangleMesh()> Read;
+};
+
+/// The shared meshes present in the data folder (the small ones only when quick),
+/// and igea after one level of Loop subdivision (~1.07M triangles).
+std::vector<MeshSource> SharedMeshes(const Settings& settings)
+{
+  namespace tt = timecritical::testing;
+  std::vector<std::string> files = { "cow.obj", "spot.obj", "teapot.obj" };
+  if (!settings.Quick)
+  {
+    files.insert(files.end(), { "homer.obj", "fandisk.obj", "stanford-bunny.obj", "igea.ply" });
+  }
+  std::vector<MeshSource> sources;
+  for (const std::string& file : files)
+  {
+    const std::string path = settings.DataDirectory + "/" + file;
+    if (!std::filesystem::is_regular_file(path))
+    {
+      std::cout << "note: " << path << " is missing, skipped\n";
+      continue;
+    }
+    sources.push_back(
+      { std::filesystem::path(file).stem().string(), path, [path] { return tt::LoadMesh(path); } });
+    if (file == "igea.ply")
+    {
+      sources.push_back({ "igea-loop1", path + " + one level of vtkLoopSubdivisionFilter",
+        [path] { return LoopSubdivide(MakeInput("igea", path, tt::LoadMesh(path)).Poly); } });
+    }
+  }
+  return sources;
+}
+
+/// Noisy tori standing in for the shared meshes when they are absent.
+std::vector<MeshSource> GeneratedMeshes(const Settings& settings)
+{
+  namespace tt = timecritical::testing;
+  std::vector<MeshSource> sources = { { "torus-20k", "MakeTorus(160, 64, noise seed 7)",
+    [] { return tt::MakeTorus(160, 64, 7); } } };
+  if (!settings.Quick)
+  {
+    sources.push_back({ "torus-1M", "MakeTorus(1000, 540, noise seed 7)",
+      [] { return tt::MakeTorus(1000, 540, 7); } });
+  }
+  return sources;
+}
+
+std::vector<MeshSource> ChooseMeshes(const Settings& settings)
+{
+  if (std::filesystem::is_directory(settings.DataDirectory))
+  {
+    std::vector<MeshSource> shared = SharedMeshes(settings);
+    if (!shared.empty())
+    {
+      return shared;
+    }
+  }
+  std::cout << "note: no shared meshes in " << settings.DataDirectory
+            << ": benchmarking generated meshes instead\n";
+  return GeneratedMeshes(settings);
+}
+
+//------------------------------------------------------------------------------
+// The simplifiers
+
+TOMBuildResult BuildTOM(const TriangleMesh& mesh)
+{
+  return TOMBuilder().Build(mesh.Points.data(), mesh.NumberOfPoints(), mesh.Triangles.data(),
+    mesh.NumberOfTriangles());
+}
+
+/// vtkQuadricDecimation with VTK's defaults, volume preservation off.
+vtkSmartPointer<vtkPolyData> QuadricDecimate(vtkPolyData* input, double targetReduction)
+{
+  vtkNew<vtkQuadricDecimation> decimate;
+  decimate->SetInputData(input);
+  decimate->SetTargetReduction(targetReduction);
+  decimate->VolumePreservationOff();
+  decimate->Update();
+  return decimate->GetOutput();
+}
+
+/// TargetReduction that stops vtkQuadricDecimation at `triangles` triangles (or one fewer).
+double ReductionFor(size_t triangles, size_t inputTriangles)
+{
+  return static_cast<double>(inputTriangles - std::min(triangles, inputTriangles)) /
+    static_cast<double>(inputTriangles);
+}
+
+/// Positions and indices in meshoptimizer's input form.
+struct MeshoptInput
+{
+  std::vector<float> Positions;
+  std::vector<unsigned int> Indices;
+  std::vector<unsigned int> Destination;
+};
+
+MeshoptInput MakeMeshoptInput(const TriangleMesh& mesh)
+{
+  MeshoptInput input;
+  input.Positions.assign(mesh.Points.begin(), mesh.Points.end());
+  input.Indices.assign(mesh.Triangles.begin(), mesh.Triangles.end());
+  input.Destination.resize(input.Indices.size());
+  return input;
+}
+
+/// meshopt_simplify down to `targetTriangles`, count-bound (huge target error);
+/// returns the number of triangles written to input.Destination.
+size_t MeshoptSimplify(MeshoptInput& input, size_t targetTriangles)
+{
+  const size_t indices = meshopt_simplify(input.Destination.data(), input.Indices.data(),
+    input.Indices.size(), input.Positions.data(), input.Positions.size() / 3, 3 * sizeof(float),
+    3 * targetTriangles, 1e9f, 0, nullptr);
+  return indices / 3;
+}
+
+/// meshopt_simplify's result as a mesh in input coordinates (unused vertices dropped).
+TriangleMesh MeshoptMesh(const InputMesh& input, size_t targetTriangles)
+{
+  MeshoptInput meshopt = MakeMeshoptInput(input.Mesh);
+  const size_t triangles = MeshoptSimplify(meshopt, targetTriangles);
+  TriangleMesh mesh;
+  mesh.Points = input.Mesh.Points;
+  mesh.Triangles.assign(meshopt.Destination.begin(), meshopt.Destination.begin() + 3 * triangles);
+  return timecritical::testing::RemoveUnusedPoints(mesh);
+}
+
+/// The TOM at `vertexCount` active vertices as a mesh in input coordinates
+/// (unused vertices dropped).
+TriangleMesh TOMAtVertexCount(
+  const InputMesh& input, const TOMBuildResult& tom, const TOMTraversal& traversal, uint32_t n)
+{
+  TriangleMesh mesh;
+  mesh.Triangles.resize(3 * static_cast<size_t>(traversal.GetNumberOfTriangles()));
+  const uint32_t count = traversal.Extract(n, mesh.Triangles.data(),
+    traversal.GetNumberOfTriangles());
+  mesh.Triangles.resize(3 * static_cast<size_t>(count));
+  mesh.Points.resize(3 * static_cast<size_t>(n));
+  for (uint32_t v = 0; v < n; ++v)
+  {
+    const double* p = &input.Mesh.Points[3 * static_cast<size_t>(tom.VertexOrder[v])];
+    std::copy(p, p + 3, &mesh.Points[3 * static_cast<size_t>(v)]);
+  }
+  Require(std::all_of(mesh.Triangles.begin(), mesh.Triangles.end(),
+            [n](uint32_t id) { return id < n; }),
+    "extracted triangle uses an inactive vertex");
+  return timecritical::testing::RemoveUnusedPoints(mesh);
+}
+
+/// Symmetric Hausdorff distance (point to cell, both directions) over the diagonal.
+struct Hausdorff
+{
+  double OriginalToSimplified = 0.0;
+  double SimplifiedToOriginal = 0.0;
+  double Symmetric() const
+  {
+    return std::max(this->OriginalToSimplified, this->SimplifiedToOriginal);
+  }
+};
+
+Hausdorff RelativeHausdorff(const InputMesh& original, const TriangleMesh& simplified)
+{
+  vtkNew<vtkHausdorffDistancePointSetFilter> filter;
+  filter->SetInputData(0, original.Poly);
+  filter->SetInputData(1, ToPolyData(simplified));
+  filter->SetTargetDistanceMethodToPointToCell();
+  filter->Update();
+  const double* relative = filter->GetRelativeDistance();
+  Hausdorff result{ relative[0] / original.Diagonal, relative[1] / original.Diagonal };
+  Require(std::isfinite(result.Symmetric()) && result.Symmetric() >= 0.0,
+    original.Name + ": Hausdorff distance is not finite");
+  return result;
+}
+
+//------------------------------------------------------------------------------
+// Section figures
+
+/// 1. Build speed.
+struct BuildFigures
+{
+  Timing Tom, Quadric, Meshopt;
+  size_t QuadricTriangles = 0;
+  size_t MeshoptTriangles = 0;
+};
+
+/// 2. Memory.
+struct MemoryFigures
+{
+  uint64_t Vertices = 0, Triangles = 0, CurveSamples = 0;
+
+  uint64_t FaceVertexBytes() const { return this->Vertices * (12 + 12) + this->Triangles * 12; }
+  uint64_t TOMBytes() const
+  {
+    return this->FaceVertexBytes() + 4 * this->Vertices + 8 * this->CurveSamples;
+  }
+  double OverheadPercent() const
+  {
+    return 100.0 * static_cast<double>(this->TOMBytes() - this->FaceVertexBytes()) /
+      static_cast<double>(this->FaceVertexBytes());
+  }
+};
+
+/// 3. Traversal at one resolution.
+struct TraversalFigures
+{
+  double Resolution = 0.0;
+  uint32_t TargetTriangles = 0, VertexCount = 0, Triangles = 0;
+  uint64_t ChainSteps = 0;
+  double SecondsPerExtract = 0.0;
+
+  double Mtris() const { return ::Mtris(this->Triangles, this->SecondsPerExtract); }
+  /// Chain steps per triangle corner (the goal's definition).
+  double ExtraVertexPercent() const
+  {
+    return this->Triangles ? 100.0 * static_cast<double>(this->ChainSteps) / (3.0 * this->Triangles)
+                           : 0.0;
+  }
+  /// Chain steps among all vertices visited (corners + steps), for comparison; no goal.
+  double ExtraOfVisitedPercent() const
+  {
+    const double visited = 3.0 * this->Triangles + static_cast<double>(this->ChainSteps);
+    return visited > 0.0 ? 100.0 * static_cast<double>(this->ChainSteps) / visited : 0.0;
+  }
+};
+
+/// 4. Quality at one resolution (meshopt: a reference that, like the TOM, keeps a
+/// subset of the input vertices; no goal).
+struct QualityFigures
+{
+  double Resolution = 0.0;
+  size_t TomTriangles = 0, QuadricTriangles = 0, MeshoptTriangles = 0;
+  Hausdorff Tom, Quadric, Meshopt;
+
+  double Ratio() const { return this->Tom.Symmetric() / this->Quadric.Symmetric(); }
+};
+
+struct MeshReport
+{
+  std::string Name, Origin;
+  size_t Points = 0, Triangles = 0;
+  double Diagonal = 0.0, LoadSeconds = 0.0;
+  BuildFigures Build;
+  MemoryFigures Memory;
+  std::vector<TraversalFigures> Traversal;
+  std::vector<QualityFigures> Quality;
+  std::string QualitySkipped; ///< why section 4 did not run, empty when it did
+};
+
+//------------------------------------------------------------------------------
+// Section measurements
+
+BuildFigures MeasureBuild(const Settings& settings, const InputMesh& input, TOMBuildResult& tom)
+{
+  BuildFigures figures;
+  figures.Tom = TimeRuns(settings, [&]() { tom = BuildTOM(input.Mesh); });
+
+  vtkSmartPointer<vtkPolyData> decimated;
+  figures.Quadric = TimeRuns(
+    settings, [&]() { decimated = QuadricDecimate(input.Poly, 1.0 - ComparisonFraction); });
+  figures.QuadricTriangles = static_cast<size_t>(decimated->GetNumberOfPolys());
+
+  MeshoptInput meshopt = MakeMeshoptInput(input.Mesh);
+  const auto target =
+    static_cast<size_t>(ComparisonFraction * static_cast<double>(input.Mesh.NumberOfTriangles()));
+  figures.Meshopt =
+    TimeRuns(settings, [&]() { figures.MeshoptTriangles = MeshoptSimplify(meshopt, target); });
+
+  Require(figures.QuadricTriangles > 0 && figures.MeshoptTriangles > 0,
+    input.Name + ": a reference simplifier produced no triangles");
+  return figures;
+}
+
+/// Checks the TOM itself: valid arrays, every input triangle kept.
+void ValidateTOM(const InputMesh& input, const TOMBuildResult& tom)
+{
+  Require(!tom.Aborted, input.Name + ": build aborted");
+  const std::string problem = timecritical::TOMValidator::Check(tom.Mesh);
+  Require(problem.empty(), input.Name + ": " + problem);
+  Require(tom.Mesh.GetNumberOfVertices() + tom.UnusedPoints == input.Mesh.NumberOfPoints(),
+    input.Name + ": TOM vertex count differs from the input");
+  Require(tom.Mesh.GetNumberOfTriangles() + tom.DroppedDegenerateTriangles ==
+      input.Mesh.NumberOfTriangles(),
+    input.Name + ": TOM triangle count differs from the input");
+  Require(tom.VertexOrder.size() == tom.Mesh.GetNumberOfVertices(),
+    input.Name + ": VertexOrder has the wrong size");
+}
+
+MemoryFigures MeasureMemory(const TOMMesh& tom)
+{
+  MemoryFigures figures;
+  figures.Vertices = tom.GetNumberOfVertices();
+  figures.Triangles = tom.GetNumberOfTriangles();
+  figures.CurveSamples = tom.ErrorCurve.GetSamples().size();
+  return figures;
+}
+
+std::vector<TraversalFigures> MeasureTraversal(
+  const Settings& settings, const std::string& name, const TOMMesh& tom)
+{
+  const TOMTraversal traversal(tom);
+  const uint32_t capacity = traversal.GetNumberOfTriangles();
+  std::vector<uint32_t> buffer(3 * static_cast<size_t>(capacity));
+  std::vector<TraversalFigures> all;
+  for (double r : TraversalResolutions)
+  {
+    TraversalFigures figures;
+    figures.Resolution = r;
+    figures.TargetTriangles = traversal.GetTrianglesForResolution(r);
+    figures.VertexCount = traversal.GetVertexCountForTriangles(figures.TargetTriangles);
+    figures.Triangles =
+      traversal.Extract(figures.VertexCount, buffer.data(), capacity, &figures.ChainSteps);
+    Require(figures.Triangles <= figures.TargetTriangles ||
+        figures.VertexCount == tom.BaseVertexCount,
+      name + ": extraction gave more triangles than asked for");
+    Require(r < 1.0 || (figures.Triangles == capacity && figures.ChainSteps == 0),
+      name + ": full resolution is not the input mesh");
+    uint64_t sink = 0;
+    figures.SecondsPerExtract = SecondsPerCall(
+      settings, [&]() { sink += traversal.Extract(figures.VertexCount, buffer.data(), capacity); });
+    Require(sink > 0 || figures.Triangles == 0, name + ": extraction produced nothing");
+    all.push_back(figures);
+  }
+  return all;
+}
+
+std::vector<QualityFigures> MeasureQuality(const InputMesh& input, const TOMBuildResult& tom)
+{
+  const TOMTraversal traversal(tom.Mesh);
+  std::vector<QualityFigures> all;
+  for (double r : HausdorffResolutions)
+  {
+    QualityFigures figures;
+    figures.Resolution = r;
+    const uint32_t n =
+      traversal.GetVertexCountForTriangles(traversal.GetTrianglesForResolution(r));
+    const TriangleMesh tomMesh = TOMAtVertexCount(input, tom, traversal, n);
+    figures.TomTriangles = tomMesh.NumberOfTriangles();
+    const TriangleMesh quadric = FromPolyData(QuadricDecimate(
+      input.Poly, ReductionFor(figures.TomTriangles, input.Mesh.NumberOfTriangles())));
+    figures.QuadricTriangles = quadric.NumberOfTriangles();
+    const TriangleMesh meshopt = MeshoptMesh(input, figures.TomTriangles);
+    figures.MeshoptTriangles = meshopt.NumberOfTriangles();
+    figures.Tom = RelativeHausdorff(input, tomMesh);
+    figures.Quadric = RelativeHausdorff(input, timecritical::testing::RemoveUnusedPoints(quadric));
+    figures.Meshopt = RelativeHausdorff(input, meshopt);
+    all.push_back(figures);
+  }
+  return all;
+}
+
+MeshReport MeasureMesh(const Settings& settings, const MeshSource& source)
+{
+  MeshReport report;
+  InputMesh input;
+  report.LoadSeconds =
+    Seconds([&]() { input = MakeInput(source.Name, source.Origin, source.Read()); });
+  report.Name = input.Name;
+  report.Origin = input.Origin;
+  report.Points = input.Mesh.NumberOfPoints();
+  report.Triangles = input.Mesh.NumberOfTriangles();
+  report.Diagonal = input.Diagonal;
+  std::cout << "[" << report.Name << "] " << report.Points << " points, " << report.Triangles
+            << " triangles (loaded in " << Fixed(report.LoadSeconds, 2) << " s)" << std::endl;
+
+  TOMBuildResult tom;
+  report.Build = MeasureBuild(settings, input, tom);
+  ValidateTOM(input, tom);
+  report.Memory = MeasureMemory(tom.Mesh);
+
+  report.Traversal = MeasureTraversal(settings, report.Name, tom.Mesh);
+
+  if (report.Triangles <= settings.HausdorffMaxTriangles)
+  {
+    const double seconds =
+      Seconds([&]() { report.Quality = MeasureQuality(input, tom); });
+    std::cout << "[" << report.Name << "] Hausdorff distances in " << Fixed(seconds, 1) << " s"
+              << std::endl;
+  }
+  else
+  {
+    report.QualitySkipped = "more than " + Count(settings.HausdorffMaxTriangles) +
+      " triangles: the serial vtkHausdorffDistancePointSetFilter needs minutes here "
+      "(run with --hausdorff-all to include it)";
+  }
+  return report;
+}
+
+//------------------------------------------------------------------------------
+// Section tables and JSON
+
+void PrintBuild(const std::vector<MeshReport>& reports, GoalLog& goals)
+{
+  Table table({ "mesh", "tris", "TOM s", "TOM Mtri/s", "quadric s", "quadric Mtri/s",
+    "TOM speedup", "meshopt s", "meshopt Mtri/s", "TOM speedup", "runs", "goal", "status" });
+  for (const MeshReport& m : reports)
+  {
+    const BuildFigures& b = m.Build;
+    const double t = static_cast<double>(m.Triangles);
+    std::vector<std::string> row = { m.Name, Count(m.Triangles), Fixed(b.Tom.Median, 4),
+      Fixed(Mtris(t, b.Tom.Median), 3), Fixed(b.Quadric.Median, 4),
+      Fixed(Mtris(t, b.Quadric.Median), 3), Fixed(b.Quadric.Median / b.Tom.Median, 2) + "x",
+      Fixed(b.Meshopt.Median, 4), Fixed(Mtris(t, b.Meshopt.Median), 3),
+      Fixed(b.Meshopt.Median / b.Tom.Median, 2) + "x",
+      Count(b.Tom.Runs.size()) + "/" + Count(b.Quadric.Runs.size()) + "/" +
+        Count(b.Meshopt.Runs.size()) };
+    for (auto& cell : goals.Check(BuildGoal, Mtris(t, b.Tom.Median), m.Name))
+    {
+      row.push_back(std::move(cell));
+    }
+    table.Add(std::move(row));
+  }
+  table.Print(std::cout,
+    "1. Build: TOM (full reduction) vs vtkQuadricDecimation and meshopt_simplify to 10% "
+    "(median wall-clock s; speedup = their time / ours)");
+}
+
+void PrintMemory(const std::vector<MeshReport>& reports, GoalLog& goals)
+{
+  Table table({ "mesh", "vertices", "triangles", "curve samples", "face-vertex B", "TOM B",
+    "overhead %", "of which subst. %", "goal", "status" });
+  for (const MeshReport& m : reports)
+  {
+    const MemoryFigures& f = m.Memory;
+    const double substitution =
+      100.0 * 4.0 * static_cast<double>(f.Vertices) / static_cast<double>(f.FaceVertexBytes());
+    std::vector<std::string> row = { m.Name, Count(f.Vertices), Count(f.Triangles),
+      Count(f.CurveSamples), Count(f.FaceVertexBytes()), Count(f.TOMBytes()),
+      Fixed(f.OverheadPercent(), 3), Fixed(substitution, 3) };
+    for (auto& cell : goals.Check(MemoryGoal, f.OverheadPercent(), m.Name))
+    {
+      row.push_back(std::move(cell));
+    }
+    table.Add(std::move(row));
+  }
+  table.Print(std::cout,
+    "2. Memory: face-vertex = V*(12+12) + T*12; TOM = that + 4*V + 8 per error-curve sample");
+}
+
+void PrintTraversal(const std::vector<MeshReport>& reports, GoalLog& goals)
+{
+  Table table({ "mesh", "r", "target tris", "vertices", "tris", "us/extract", "Mtri/s", "goal",
+    "status", "extra vertices %", "goal", "status", "extra/visited %" });
+  for (const MeshReport& m : reports)
+  {
+    for (const TraversalFigures& f : m.Traversal)
+    {
+      const std::string where = m.Name + " r=" + Fixed(f.Resolution, 2);
+      std::vector<std::string> row = { m.Name, Fixed(f.Resolution, 2), Count(f.TargetTriangles),
+        Count(f.VertexCount), Count(f.Triangles), Fixed(f.SecondsPerExtract * 1e6, 2),
+        Fixed(f.Mtris(), 1) };
+      for (auto& cell : goals.Check(TraversalGoal, f.Mtris(), where))
+      {
+        row.push_back(std::move(cell));
+      }
+      row.push_back(Fixed(f.ExtraVertexPercent(), 2));
+      for (auto& cell : goals.Check(ChainGoal, f.ExtraVertexPercent(), where))
+      {
+        row.push_back(std::move(cell));
+      }
+      row.push_back(Fixed(f.ExtraOfVisitedPercent(), 2));
+      table.Add(std::move(row));
+    }
+  }
+  table.Print(std::cout,
+    "3. Traversal: TOMTraversal::Extract, one core, median per call; extra vertices = chain "
+    "steps / (3 * triangles); extra/visited = chain steps / (3 * triangles + chain steps)");
+}
+
+void PrintQuality(const std::vector<MeshReport>& reports, GoalLog& goals)
+{
+  Table table({ "mesh", "r", "TOM tris", "quadric tris", "TOM H/diag", "quadric H/diag",
+    "TOM/quadric", "goal", "status", "meshopt tris", "meshopt H/diag" });
+  std::vector<std::string> notes;
+  for (const MeshReport& m : reports)
+  {
+    if (!m.QualitySkipped.empty())
+    {
+      notes.push_back(m.Name + ": skipped, " + m.QualitySkipped);
+    }
+    for (const QualityFigures& f : m.Quality)
+    {
+      std::vector<std::string> row = { m.Name, Fixed(f.Resolution, 2), Count(f.TomTriangles),
+        Count(f.QuadricTriangles), Format("%.3e", f.Tom.Symmetric()),
+        Format("%.3e", f.Quadric.Symmetric()), Fixed(f.Ratio(), 3) };
+      for (auto& cell :
+        goals.Check(HausdorffGoal, f.Ratio(), m.Name + " r=" + Fixed(f.Resolution, 2)))
+      {
+        row.push_back(std::move(cell));
+      }
+      row.push_back(Count(f.MeshoptTriangles));
+      row.push_back(Format("%.3e", f.Meshopt.Symmetric()));
+      table.Add(std::move(row));
+    }
+  }
+  table.Print(std::cout,
+    "4. Quality: symmetric Hausdorff distance (point to cell) / bounding-box diagonal, TOM vs "
+    "vtkQuadricDecimation at the same triangle count (meshopt: vertex-subset reference)");
+  for (const std::string& note : notes)
+  {
+    std::cout << "note: " << note << "\n";
+  }
+}
+
+Json ToJson(const Hausdorff& h)
+{
+  return Json::Object()
+    .Set("original_to_simplified", h.OriginalToSimplified)
+    .Set("simplified_to_original", h.SimplifiedToOriginal)
+    .Set("symmetric", h.Symmetric());
+}
+
+Json ToJson(const MeshReport& m)
+{
+  const double t = static_cast<double>(m.Triangles);
+  const BuildFigures& b = m.Build;
+  Json build = Json::Object()
+                 .Set("tom", ToJson(b.Tom).Set("mtris_per_s", Mtris(t, b.Tom.Median)))
+                 .Set("quadric_10pct", ToJson(b.Quadric)
+                                         .Set("mtris_per_s", Mtris(t, b.Quadric.Median))
+                                         .Set("output_triangles", b.QuadricTriangles))
+                 .Set("meshopt_10pct", ToJson(b.Meshopt)
+                                         .Set("mtris_per_s", Mtris(t, b.Meshopt.Median))
+                                         .Set("output_triangles", b.MeshoptTriangles))
+                 .Set("speedup_vs_quadric", b.Quadric.Median / b.Tom.Median)
+                 .Set("speedup_vs_meshopt", b.Meshopt.Median / b.Tom.Median);
+  const MemoryFigures& f = m.Memory;
+  Json memory = Json::Object()
+                  .Set("vertices", f.Vertices)
+                  .Set("triangles", f.Triangles)
+                  .Set("error_curve_samples", f.CurveSamples)
+                  .Set("face_vertex_bytes", f.FaceVertexBytes())
+                  .Set("tom_bytes", f.TOMBytes())
+                  .Set("overhead_percent", f.OverheadPercent());
+  Json traversal = Json::Array();
+  for (const TraversalFigures& tr : m.Traversal)
+  {
+    traversal.Push(Json::Object()
+                     .Set("resolution", tr.Resolution)
+                     .Set("target_triangles", tr.TargetTriangles)
+                     .Set("vertex_count", tr.VertexCount)
+                     .Set("triangles", tr.Triangles)
+                     .Set("median_s_per_extract", tr.SecondsPerExtract)
+                     .Set("mtris_per_s", tr.Mtris())
+                     .Set("chain_steps", tr.ChainSteps)
+                     .Set("extra_vertex_percent", tr.ExtraVertexPercent())
+                     .Set("extra_of_visited_percent", tr.ExtraOfVisitedPercent()));
+  }
+  Json quality = Json::Array();
+  for (const QualityFigures& q : m.Quality)
+  {
+    quality.Push(Json::Object()
+                   .Set("resolution", q.Resolution)
+                   .Set("tom_triangles", q.TomTriangles)
+                   .Set("quadric_triangles", q.QuadricTriangles)
+                   .Set("tom_relative_hausdorff", ToJson(q.Tom))
+                   .Set("quadric_relative_hausdorff", ToJson(q.Quadric))
+                   .Set("meshopt_triangles", q.MeshoptTriangles)
+                   .Set("meshopt_relative_hausdorff", ToJson(q.Meshopt))
+                   .Set("ratio_tom_over_quadric", q.Ratio()));
+  }
+  return Json::Object()
+    .Set("name", m.Name)
+    .Set("origin", m.Origin)
+    .Set("points", m.Points)
+    .Set("triangles", m.Triangles)
+    .Set("bounding_box_diagonal", m.Diagonal)
+    .Set("load_s", m.LoadSeconds)
+    .Set("build", std::move(build))
+    .Set("memory", std::move(memory))
+    .Set("traversal", std::move(traversal))
+    .Set("hausdorff", std::move(quality))
+    .Set("hausdorff_skipped", m.QualitySkipped.empty() ? Json() : Json(m.QualitySkipped));
+}
+
+/// Medians over the meshes of the headline figures.
+Json Medians(const std::vector<MeshReport>& reports)
+{
+  std::vector<double> build, quadric, meshopt, memory, rate, chain, ratio;
+  for (const MeshReport& m : reports)
+  {
+    const double t = static_cast<double>(m.Triangles);
+    build.push_back(Mtris(t, m.Build.Tom.Median));
+    quadric.push_back(Mtris(t, m.Build.Quadric.Median));
+    meshopt.push_back(Mtris(t, m.Build.Meshopt.Median));
+    memory.push_back(m.Memory.OverheadPercent());
+    for (const TraversalFigures& f : m.Traversal)
+    {
+      rate.push_back(f.Mtris());
+      chain.push_back(f.ExtraVertexPercent());
+    }
+    for (const QualityFigures& q : m.Quality)
+    {
+      ratio.push_back(q.Ratio());
+    }
+  }
+  return Json::Object()
+    .Set("tom_build_mtris_per_s", Median(build))
+    .Set("quadric_10pct_mtris_per_s", Median(quadric))
+    .Set("meshopt_10pct_mtris_per_s", Median(meshopt))
+    .Set("memory_overhead_percent", Median(memory))
+    .Set("traversal_mtris_per_s", Median(rate))
+    .Set("extra_vertex_percent", Median(chain))
+    .Set("hausdorff_ratio_tom_over_quadric", Median(ratio));
+}
+
+//------------------------------------------------------------------------------
+// Machine and run information
+
+std::string CpuModel()
+{
+  std::ifstream cpuinfo("/proc/cpuinfo");
+  std::string line;
+  while (std::getline(cpuinfo, line))
+  {
+    if (line.rfind("model name", 0) == 0)
+    {
+      const size_t value = line.find_first_not_of(" \t", line.find(':') + 1);
+      return value == std::string::npos ? line : line.substr(value);
+    }
+  }
+  return "unknown";
+}
+
+/// The 1, 5 and 15 minute load averages: timings are only as good as a quiet machine.
+std::string LoadAverage()
+{
+  std::ifstream loadavg("/proc/loadavg");
+  double one = 0.0, five = 0.0, fifteen = 0.0;
+  loadavg >> one >> five >> fifteen;
+  return Fixed(one, 2) + " " + Fixed(five, 2) + " " + Fixed(fifteen, 2);
+}
+
+std::string UtcNow()
+{
+  const std::time_t now = std::time(nullptr);
+  std::tm utc{};
+  gmtime_r(&now, &utc);
+  char text[32];
+  std::strftime(text, sizeof(text), "%Y-%m-%dT%H:%M:%SZ", &utc);
+  return text;
+}
+
+Json MachineInfo()
+{
+  return Json::Object()
+    .Set("cpu_model", CpuModel())
+    .Set("hardware_threads", std::thread::hardware_concurrency())
+    .Set("load_average_at_start", LoadAverage())
+    .Set("date_utc", UtcNow())
+    .Set("compiler", __VERSION__)
+#ifdef NDEBUG
+    .Set("assertions", false)
+#else
+    .Set("assertions", true)
+#endif
+    .Set("vtk_version", vtkVersion::GetVTKVersion())
+    .Set("meshoptimizer_version", MESHOPTIMIZER_VERSION);
+}
+
+Json SettingsInfo(const Settings& s)
+{
+  Json goals = Json::Object();
+  for (const Goal* goal : AllGoals)
+  {
+    goals.Set(goal->Name, goal->Text());
+  }
+  return Json::Object()
+    .Set("quick", s.Quick)
+    .Set("data_directory", s.DataDirectory)
+    .Set("build_runs", s.BuildRuns)
+    .Set("hausdorff_max_triangles", s.HausdorffMaxTriangles)
+    .Set("single_run_above_s", s.SlowRunSeconds)
+    .Set("traversal_min_measurement_s", s.MinMeasureSeconds)
+    .Set("traversal_measurements", s.TraversalMeasurements)
+    .Set("comparison_fraction", ComparisonFraction)
+    .Set("quadric_settings", "VTK defaults, TargetReduction 0.9, VolumePreservation off")
+    .Set("meshopt_settings", "meshopt_simplify, target 10% of indices, target_error 1e9, options 0")
+    .Set("goals", std::move(goals));
+}
+
+//------------------------------------------------------------------------------
+// Command line
+
+void PrintUsage(std::ostream& os)
+{
+  os << "usage: TOMBenchmark [--quick] [--json FILE] [--data DIR] [--hausdorff-all]\n"
+        "  --quick          small meshes only, shorter measurements (smoke test)\n"
+        "  --json FILE      where to write the figures (default tom-benchmark.json)\n"
+        "  --data DIR       folder of the shared meshes\n"
+        "                   (default " TIMECRITICAL_SHARED_DATA_DIR ")\n"
+        "  --hausdorff-all  Hausdorff distances also for meshes over 500k triangles (minutes)\n";
+}
+
+enum class Parsed
+{
+  Run,
+  Help,
+  Error
+};
+
+Parsed ParseArguments(int argc, char* argv[], Settings& settings)
+{
+  for (int i = 1; i < argc; ++i)
+  {
+    const std::string arg = argv[i];
+    const bool hasValue = i + 1 < argc;
+    if (arg == "--quick")
+    {
+      settings.Quick = true;
+      settings.MinMeasureSeconds = 0.02;
+    }
+    else if (arg == "--json" && hasValue)
+    {
+      settings.JsonPath = argv[++i];
+    }
+    else if (arg == "--data" && hasValue)
+    {
+      settings.DataDirectory = argv[++i];
+    }
+    else if (arg == "--hausdorff-all")
+    {
+      settings.HausdorffMaxTriangles = std::numeric_limits<size_t>::max();
+    }
+    else if (arg == "--help" || arg == "-h")
+    {
+      PrintUsage(std::cout);
+      return Parsed::Help;
+    }
+    else
+    {
+      std::cerr << "unknown or incomplete argument: " << arg << "\n";
+      PrintUsage(std::cerr);
+      return Parsed::Error;
+    }
+  }
+  return Parsed::Run;
+}
+
+int Run(const Settings& settings)
+{
+  std::cout << "TOMBenchmark on " << CpuModel() << " (" << std::thread::hardware_concurrency()
+            << " threads, load average " << LoadAverage() << "), " << UtcNow()
+            << (settings.Quick ? " (quick)" : "") << std::endl;
+  const Json machine = MachineInfo();
+  std::vector<MeshReport> reports;
+  const double total = Seconds([&]() {
+    for (const MeshSource& source : ChooseMeshes(settings))
+    {
+      reports.push_back(MeasureMesh(settings, source));
+    }
+  });
+
+  GoalLog goals;
+  PrintBuild(reports, goals);
+  PrintMemory(reports, goals);
+  PrintTraversal(reports, goals);
+  PrintQuality(reports, goals);
+  goals.PrintSummary(std::cout);
+
+  Json meshes = Json::Array();
+  for (const MeshReport& report : reports)
+  {
+    meshes.Push(ToJson(report));
+  }
+  const Json document = Json::Object()
+                          .Set("benchmark", "TOMBenchmark")
+                          .Set("machine", machine)
+                          .Set("load_average_at_end", LoadAverage())
+                          .Set("settings", SettingsInfo(settings))
+                          .Set("total_s", total)
+                          .Set("meshes", std::move(meshes))
+                          .Set("medians_over_meshes", Medians(reports))
+                          .Set("goal_checks", goals.ToJson())
+                          .Set("goals_missed", goals.Missed());
+  std::ofstream out(settings.JsonPath);
+  document.Write(out);
+  out << "\n";
+  out.close();
+  if (!out)
+  {
+    std::cerr << "error: cannot write " << settings.JsonPath << "\n";
+    return 1;
+  }
+  std::cout << "\n" << goals.Missed() << " goal check(s) missed; " << reports.size()
+            << " mesh(es) in " << Fixed(total, 1) << " s; figures written to " << settings.JsonPath
+            << std::endl;
+  return 0;
+}
+}
+
+int main(int argc, char* argv[])
+{
+  Settings settings;
+  switch (ParseArguments(argc, argv, settings))
+  {
+    case Parsed::Help:
+      return 0;
+    case Parsed::Error:
+      return 2;
+    case Parsed::Run:
+      break;
+  }
+  try
+  {
+    return Run(settings);
+  }
+  catch (const std::exception& e)
+  {
+    std::cerr << "error: " << e.what() << std::endl;
+    return 1;
+  }
+}
