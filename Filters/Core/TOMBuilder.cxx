@@ -2338,8 +2338,12 @@ void Simplifier::BuildOutput(TOMBuildResult& result)
     result.VertexCountError[i] = i < base ? baseError : this->StepError[n - i - 1];
   }
 
+  // The curve's 8 bytes per sample must stay small next to the one index per
+  // vertex of the TOM itself: at most one sample per 256 vertices (at least 8).
+  const unsigned curveSamples = std::min<unsigned>(
+    this->Options.ErrorCurveSamples, std::max<unsigned>(8u, static_cast<unsigned>(n / 256)));
   mesh.ErrorCurve = TOMErrorCurve::FromVertexErrors(result.VertexCountError.data(),
-    result.TrianglesAtVertexCount.data(), n, base, this->Options.ErrorCurveSamples);
+    result.TrianglesAtVertexCount.data(), n, base, curveSamples);
 }
 
 //------------------------------------------------------------------------------

@@ -31,7 +31,7 @@ struct TOMBuildOptions
    * while better collapses remain. 0 disables it.
    */
   double MinimumTriangleQuality = 0.0;
-  /// Samples kept in the error curve.
+  /// Samples kept in the error curve (at most one per 256 vertices, at least 8).
   unsigned ErrorCurveSamples = 48;
   /**
    * Called now and then with the fraction done in [0,1]; returning false aborts
