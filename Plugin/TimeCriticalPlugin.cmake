@@ -7,6 +7,7 @@ if (TIMECRITICAL_PLUGIN_BUILDS_MODULES)
     MODULE_FILES
       "${CMAKE_CURRENT_LIST_DIR}/../Filters/Core/vtk.module"
       "${CMAKE_CURRENT_LIST_DIR}/../Filters/vtk.module"
+      "${CMAKE_CURRENT_LIST_DIR}/../Rendering/Core/vtk.module"
       "${CMAKE_CURRENT_LIST_DIR}/../Rendering/vtk.module")
   if (NOT COMMAND timecritical_strict_warnings)
     function (timecritical_strict_warnings)

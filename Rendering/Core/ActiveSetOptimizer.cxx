@@ -1,0 +1,800 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "ActiveSetOptimizer.h"
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <climits>
+#include <cfloat>
+#include <cmath>
+#include <limits>
+
+namespace timecritical
+{
+namespace
+{
+constexpr double Infinity = std::numeric_limits<double>::infinity();
+/// |d_i| below this (absolute + relative to r_i) counts as d = 0 (section 5.3.3).
+constexpr double StepTolerance = 1e-12;
+constexpr double StepRelativeTolerance = 1e-10;
+/// A bound is released only when kappa g_i is beyond it by this relative margin.
+constexpr double ReleaseTolerance = 1e-10;
+/// Newton rounds of one projected step (the bracket halves at worst: ~60 suffice).
+constexpr int MaxNewtonRounds = 200;
+
+double Now()
+{
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
+    .count();
+}
+
+double Clamp(double x, double lo, double hi)
+{
+  return x < lo ? lo : (x > hi ? hi : x);
+}
+
+/// Bucket of a positive key on a half-octave scale (for the warm-start ordering).
+int Bucket(double key)
+{
+  int e = 0;
+  const double m = std::frexp(key, &e);
+  return 2 * e + (m >= 0.70710678118654752 ? 1 : 0);
+}
+}
+
+ActiveSetOptimizer::ActiveSetOptimizer(const Options& options)
+  : Opts(options)
+{
+}
+
+const char* ActiveSetOptimizer::GetStatusName(Status status)
+{
+  switch (status)
+  {
+    case Status::Optimal:
+      return "optimal";
+    case Status::Unconstrained:
+      return "unconstrained";
+    case Status::Infeasible:
+      return "infeasible";
+    case Status::TimeLimit:
+      return "time-limit";
+    case Status::IterationLimit:
+      return "iteration-limit";
+    case Status::Empty:
+      return "empty";
+    case Status::InvalidInput:
+      return "invalid-input";
+  }
+  return "unknown";
+}
+
+void ActiveSetOptimizer::Reserve(std::size_t n)
+{
+  if (n > this->T.size())
+  {
+    this->T.resize(n);
+    this->Lo.resize(n);
+    this->C.resize(n);
+    this->G.resize(n);
+    this->State.resize(n);
+    this->Order.resize(n);
+    this->Key.resize(n);
+  }
+}
+
+double ActiveSetOptimizer::Power(double x) const
+{
+  // gamma = 1 / (alpha + 1): 1/2, 1/3 and 2 for the eq. 10 families.
+  if (this->Alpha == 1.0)
+  {
+    return std::sqrt(x);
+  }
+  if (this->Alpha == 2.0)
+  {
+    return std::cbrt(x);
+  }
+  if (this->Alpha == -0.5)
+  {
+    return x * x;
+  }
+  return std::pow(x, this->Gamma);
+}
+
+bool ActiveSetOptimizer::TimeUp()
+{
+  if (!this->Expired && this->Work >= this->Opts.ClockCheckWork)
+  {
+    this->Work = 0;
+    this->Expired = Now() > this->Deadline;
+  }
+  return this->Expired;
+}
+
+void ActiveSetOptimizer::BetaReduce(double* r, double budget, double cost)
+{
+  // Section 5.3.1: reduce resolutions by Beta, least valuable objects first,
+  // until the time constraint holds. "Value" is the marginal benefit per unit
+  // of time, rho_i = -f_i'(r_i) / tmax_i = (g_i / r_i)^(alpha+1); ordering by
+  // g_i / r_i is the same and needs no pow(). Counting sort on half-octave
+  // buckets keeps each pass O(n) without allocation.
+  const double beta = this->Opts.Beta > 0.0 && this->Opts.Beta < 1.0 ? this->Opts.Beta : 0.8;
+  constexpr int Buckets = 128;
+  std::array<std::uint32_t, Buckets + 1> counts{};
+  const std::size_t n = this->N;
+  double excess = cost - budget;
+  for (int pass = 0; excess > 0.0 && pass < 1000; ++pass)
+  {
+    // Bucket of every reducible object (INT_MIN: not reducible), computed once.
+    int lowest = INT_MAX;
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      const bool reducible = this->State[i] == Free && r[i] > this->Lo[i];
+      this->Key[i] = reducible ? Bucket(this->G[i] / r[i]) : INT_MIN;
+      lowest = reducible ? std::min(lowest, this->Key[i]) : lowest;
+    }
+    if (lowest == INT_MAX)
+    {
+      break;
+    }
+    counts.fill(0);
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      if (this->Key[i] != INT_MIN)
+      {
+        this->Key[i] = std::min(Buckets - 1, this->Key[i] - lowest);
+        ++counts[static_cast<std::size_t>(this->Key[i]) + 1];
+      }
+    }
+    for (int b = 0; b < Buckets; ++b)
+    {
+      counts[b + 1] += counts[b];
+    }
+    std::size_t m = 0;
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      if (this->Key[i] != INT_MIN)
+      {
+        this->Order[counts[static_cast<std::size_t>(this->Key[i])]++] = static_cast<std::uint32_t>(i);
+        ++m;
+      }
+    }
+    for (std::size_t j = 0; j < m && excess > 0.0; ++j)
+    {
+      const std::uint32_t i = this->Order[j];
+      const double reduced = std::max(this->Lo[i], beta * r[i]);
+      excess -= this->T[i] * (r[i] - reduced);
+      r[i] = reduced;
+    }
+  }
+  if (excess > 0.0) // rounding only: rmin is feasible
+  {
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      if (this->State[i] == Free)
+      {
+        r[i] = this->Lo[i];
+      }
+    }
+  }
+}
+
+bool ActiveSetOptimizer::ProjectedStep(
+  double* r, double slack, double kappa0, double& objective, std::size_t& changes)
+{
+  // Minimize f over the free variables within their bounds, the working
+  // set's bounds fixed, on sum_F tmax_i r_i = slack. Its solution is
+  // r_i = clamp(kappa g_i, rmin_i, 1) where phi(kappa) = sum_F tmax_i
+  // clamp(kappa g_i) = slack; phi is non-decreasing and piecewise linear, so a
+  // Newton iteration (each round = the eq. 14 solution for the bounds the last
+  // round hit) safeguarded by a bracket finds the root exactly in a few
+  // rounds. kappa below the root is feasible, so the bracket's lower end is a
+  // feasible fall-back when the round or time limit stops the iteration.
+  const std::size_t n = this->N;
+  double kLo = 0.0, kHi = Infinity;
+  double kappa = kappa0;
+  double previous = -1.0; // kappa of the last round, when this one is its Newton step
+  double solution = 0.0;
+  bool exact = false;
+  // Relative rounding of a sum of n terms.
+  const double tolerance = std::max(1e-13, 2.0 * static_cast<double>(n) * DBL_EPSILON);
+  for (int round = 0; round < MaxNewtonRounds; ++round)
+  {
+    if (round > 0)
+    {
+      ++this->StepCount;
+      if (this->StepCount >= this->Opts.MaxSteps || this->TimeUp())
+      {
+        break;
+      }
+    }
+    double phi = 0.0, slope = 0.0, clampedCost = 0.0;
+    std::size_t freeCount = 0, upperCount = 0, moved = 0;
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      if (this->State[i] != Free)
+      {
+        continue;
+      }
+      ++freeCount;
+      const double t = this->T[i];
+      const double y = kappa * this->G[i];
+      if (previous >= 0.0)
+      {
+        // Did a bound change between the last round and this Newton step?
+        const double x = previous * this->G[i];
+        moved += (x <= this->Lo[i]) != (y <= this->Lo[i]) || (x >= 1.0) != (y >= 1.0);
+      }
+      if (y <= this->Lo[i])
+      {
+        phi += t * this->Lo[i];
+        clampedCost += t * this->Lo[i];
+      }
+      else if (y >= 1.0)
+      {
+        phi += t;
+        clampedCost += t;
+        ++upperCount;
+      }
+      else
+      {
+        phi += t * y;
+        slope += t * this->G[i];
+      }
+    }
+    this->Work += n;
+    // Exact: phi meets the slack, or a Newton step kept every bound, so it
+    // solved the linear piece it is on (up to the rounding of the sums).
+    if (std::abs(phi - slack) <= tolerance * slack || (previous >= 0.0 && moved == 0))
+    {
+      exact = true;
+      solution = kappa;
+      break;
+    }
+    if (phi < slack)
+    {
+      if (upperCount == freeCount) // time is not binding on F: all to full
+      {
+        exact = true;
+        solution = Infinity;
+        break;
+      }
+      kLo = std::max(kLo, kappa);
+    }
+    else
+    {
+      kHi = std::min(kHi, kappa);
+    }
+    double next = slope > 0.0 ? (slack - clampedCost) / slope : -1.0;
+    previous = kappa;
+    if (!(next > kLo && next < kHi))
+    {
+      // Safeguard: bisection (geometric across orders of magnitude).
+      previous = -1.0;
+      next = !std::isfinite(kHi) ? 4.0 * std::max(kLo, kappa)
+        : (kLo > 0.0 && kHi > 4.0 * kLo ? std::sqrt(kLo * kHi) : 0.5 * (kLo + kHi));
+    }
+    if (std::isfinite(kHi) && kHi - kLo <= 1e-15 * kHi)
+    {
+      break;
+    }
+    kappa = next;
+  }
+  if (!exact)
+  {
+    if (!(kLo > 0.0))
+    {
+      return false;
+    }
+    solution = kLo;
+  }
+
+  // Accept only an improvement: f is monotone along the returned points.
+  double delta = 0.0;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    if (this->State[i] == Free)
+    {
+      const double y = Clamp(solution * this->G[i], this->Lo[i], 1.0);
+      delta += ResolutionProblem::Term(this->C[i], this->Alpha, y) -
+        ResolutionProblem::Term(this->C[i], this->Alpha, r[i]);
+    }
+  }
+  this->Work += n;
+  if (!(delta <= 0.0))
+  {
+    return false;
+  }
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    if (this->State[i] == Free)
+    {
+      const double y = solution * this->G[i];
+      if (y <= this->Lo[i])
+      {
+        r[i] = this->Lo[i];
+        this->State[i] = Lower;
+        ++changes;
+      }
+      else if (y >= 1.0)
+      {
+        r[i] = 1.0;
+        this->State[i] = Upper;
+        ++changes;
+      }
+      else
+      {
+        r[i] = y;
+      }
+    }
+  }
+  objective += delta;
+  return true;
+}
+
+std::size_t ActiveSetOptimizer::LineStep(double* r, double kappa, double& objective)
+{
+  // Algorithm 1: the largest step mu <= 1 along d = kappa g - r (free
+  // variables) that keeps every bound, then every bound reached joins the
+  // working set. Along d the time constraint's left side moves linearly from
+  // cost(r) <= Budget to Budget, so it holds for every mu in [0, 1].
+  const std::size_t n = this->N;
+  double mu = 1.0;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    if (this->State[i] == Free)
+    {
+      const double d = kappa * this->G[i] - r[i];
+      if (d > 0.0)
+      {
+        mu = std::min(mu, (1.0 - r[i]) / d);
+      }
+      else if (d < 0.0)
+      {
+        mu = std::min(mu, (this->Lo[i] - r[i]) / d);
+      }
+    }
+  }
+  mu = std::max(0.0, mu);
+  double delta = 0.0;
+  std::size_t changes = 0;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    if (this->State[i] == Free)
+    {
+      const double d = kappa * this->G[i] - r[i];
+      double y = r[i] + mu * d;
+      if (d > 0.0 && y >= 1.0 - 1e-14)
+      {
+        y = 1.0;
+        this->State[i] = Upper;
+        ++changes;
+      }
+      else if (d < 0.0 && y <= this->Lo[i] * (1.0 + 1e-14))
+      {
+        y = this->Lo[i];
+        this->State[i] = Lower;
+        ++changes;
+      }
+      delta += ResolutionProblem::Term(this->C[i], this->Alpha, y) -
+        ResolutionProblem::Term(this->C[i], this->Alpha, r[i]);
+      r[i] = y;
+    }
+  }
+  this->Work += 2 * n;
+  objective += delta;
+  return changes;
+}
+
+bool ActiveSetOptimizer::Release(double kappa, bool slackTime)
+{
+  // eq. 16: a lower bound's multiplier lambda tmax_i - c_i rmin_i^-(alpha+1)
+  // is negative iff kappa g_i > rmin_i, an upper bound's c_i - lambda tmax_i
+  // iff kappa g_i < 1. With the time constraint slack, lambda = 0.
+  const std::size_t n = this->N;
+  const double lambda = slackTime || !std::isfinite(kappa) ? 0.0 : std::pow(kappa, -(this->Alpha + 1.0));
+  std::size_t best = n;
+  double bestValue = 0.0;
+  bool released = false;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const std::uint8_t s = this->State[i];
+    bool negative = false;
+    double multiplier = 0.0;
+    if (s == Lower && this->G[i] > 0.0)
+    {
+      negative = slackTime || kappa * this->G[i] > this->Lo[i] * (1.0 + ReleaseTolerance);
+      if (negative && !this->Opts.BlockRelease)
+      {
+        multiplier = this->T[i] * lambda -
+          this->C[i] * std::pow(this->Lo[i], -(this->Alpha + 1.0));
+      }
+    }
+    else if (s == Upper && !slackTime)
+    {
+      negative = kappa * this->G[i] < 1.0 - ReleaseTolerance;
+      if (negative && !this->Opts.BlockRelease)
+      {
+        multiplier = this->C[i] - lambda * this->T[i];
+      }
+    }
+    if (!negative)
+    {
+      continue;
+    }
+    if (this->Opts.BlockRelease)
+    {
+      this->State[i] = Free;
+      released = true;
+    }
+    else if (best == n || multiplier < bestValue)
+    {
+      best = i;
+      bestValue = multiplier;
+    }
+  }
+  this->Work += n;
+  if (!this->Opts.BlockRelease && best < n)
+  {
+    this->State[best] = Free;
+    released = true;
+  }
+  return released;
+}
+
+ActiveSetOptimizer::Result ActiveSetOptimizer::Solve(
+  const ResolutionProblem& problem, double* r, bool warmStart)
+{
+  const double start = Now();
+  Result result;
+  const std::size_t n = problem.Count;
+  this->N = n;
+  this->StepCount = 0;
+  this->Work = 0;
+  const double timeLimit = this->Opts.TimeLimit;
+  this->Expired = !(timeLimit > 0.0);
+  this->Deadline = start + (this->Expired ? 0.0 : timeLimit);
+  auto finish = [&]() -> Result {
+    result.Converged = result.State == Status::Optimal ||
+      result.State == Status::Unconstrained || result.State == Status::Empty;
+    result.Infeasible = result.State == Status::Infeasible;
+    result.Steps = this->StepCount;
+    result.Seconds = Now() - start;
+    return result;
+  };
+  if (n == 0)
+  {
+    result.State = Status::Empty;
+    return finish();
+  }
+  if (!r || !problem.Weight || !problem.MaxTime ||
+    !ResolutionProblem::IsValidAlpha(problem.Alpha))
+  {
+    if (r)
+    {
+      for (std::size_t i = 0; i < n; ++i)
+      {
+        const double lo = problem.MinResolution ? problem.MinResolution[i] : 0.0;
+        r[i] = std::isfinite(lo) ? Clamp(lo, ResolutionProblem::TinyResolution, 1.0) : 1.0;
+      }
+    }
+    result.State = Status::InvalidInput;
+    return finish();
+  }
+  this->Reserve(n);
+  this->Alpha = problem.Alpha;
+  this->Gamma = 1.0 / (problem.Alpha + 1.0);
+
+  // Sanitized copies; g_i = (c_i / tmax_i)^gamma is the only pow() per object.
+  double costLow = 0.0, costHigh = 0.0;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const double lo = problem.MinResolution ? problem.MinResolution[i] : 0.0;
+    this->Lo[i] = std::isfinite(lo) ? Clamp(lo, ResolutionProblem::TinyResolution, 1.0)
+                                    : ResolutionProblem::TinyResolution;
+    const double c = problem.Weight[i];
+    this->C[i] = std::isfinite(c) && c > 0.0 ? c : 0.0;
+    const double t = problem.MaxTime[i];
+    this->T[i] = 0.0;
+    this->G[i] = 0.0;
+    if (!(std::isfinite(t) && t >= 0.0))
+    {
+      this->State[i] = PinnedLow;
+      ++result.InvalidCount;
+    }
+    else if (t == 0.0)
+    {
+      this->State[i] = PinnedHigh;
+    }
+    else
+    {
+      this->State[i] = Free;
+      this->T[i] = t;
+      const double g = this->C[i] > 0.0 ? this->Power(this->C[i] / t) : 0.0;
+      this->G[i] = std::isfinite(g) ? g : std::numeric_limits<double>::max();
+      costLow += t * this->Lo[i];
+      costHigh += t;
+    }
+  }
+  this->Work += n;
+
+  auto pinned = [&](std::size_t i) { return this->State[i] == PinnedLow ? this->Lo[i] : 1.0; };
+  auto objectiveOf = [&]() {
+    double f = 0.0;
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      f += ResolutionProblem::Term(this->C[i], this->Alpha, r[i]);
+    }
+    return f;
+  };
+  auto costOf = [&]() {
+    double cost = 0.0;
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      cost += this->T[i] * r[i];
+    }
+    return cost;
+  };
+
+  // Section 5.3.1: infeasible and all-full cases terminate at once.
+  const double rawBudget = problem.Budget;
+  if (!std::isfinite(rawBudget) || costLow > rawBudget || costHigh <= rawBudget)
+  {
+    const bool full = std::isfinite(rawBudget) && costHigh <= rawBudget;
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      r[i] = this->State[i] == Free ? (full ? 1.0 : this->Lo[i]) : pinned(i);
+    }
+    result.State = full ? Status::Unconstrained : Status::Infeasible;
+    result.Objective = result.InitialObjective = objectiveOf();
+    result.Cost = costOf();
+    result.KKTResidual = full ? 0.0
+                              : (std::isfinite(rawBudget) && rawBudget != 0.0
+                                    ? (result.Cost - rawBudget) / std::abs(rawBudget)
+                                    : Infinity);
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      result.UpperCount += this->State[i] == Free && full;
+      result.LowerCount += this->State[i] == Free && !full;
+    }
+    return finish();
+  }
+  // Solve against a budget shaved by the rounding of O(n)-term sums (at
+  // least 1e-12), so that it cannot push a returned cost above the caller's.
+  const double budget =
+    rawBudget * (1.0 - std::max(1e-12, 4.0 * static_cast<double>(n) * DBL_EPSILON));
+  if (costLow > budget) // within rounding of rmin: rmin is the answer
+  {
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      r[i] = this->State[i] == Free ? this->Lo[i] : pinned(i);
+      result.LowerCount += this->State[i] == Free;
+    }
+    result.State = Status::Optimal;
+    result.Objective = result.InitialObjective = objectiveOf();
+    result.Cost = costOf();
+    return finish();
+  }
+
+  // Start point: rmin, or the previous resolutions reduced until feasible.
+  double cost = 0.0;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    if (this->State[i] != Free)
+    {
+      r[i] = pinned(i);
+      continue;
+    }
+    double x = this->Lo[i];
+    if (warmStart && this->G[i] > 0.0 && std::isfinite(r[i]) && r[i] > 0.0)
+    {
+      x = Clamp(r[i], this->Lo[i], 1.0);
+    }
+    r[i] = x;
+    cost += this->T[i] * x;
+  }
+  if (cost > budget)
+  {
+    this->BetaReduce(r, budget, cost);
+  }
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    if (this->State[i] == Free)
+    {
+      // Algorithm 1: W(0) = the time constraint (section 5.3.1) + active bounds.
+      this->State[i] = r[i] <= this->Lo[i] ? Lower : (r[i] >= 1.0 ? Upper : Free);
+    }
+  }
+  double objective = objectiveOf();
+  result.InitialObjective = objective;
+  this->Work += 2 * n;
+
+  // Subspace data of the working set: sum of tmax_i g_i over F, fixed cost.
+  auto subspace = [&](double& fixedCost, double& weightSum) {
+    std::size_t freeCount = 0;
+    fixedCost = 0.0;
+    weightSum = 0.0;
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      const std::uint8_t s = this->State[i];
+      if (s == Free)
+      {
+        weightSum += this->T[i] * this->G[i];
+        ++freeCount;
+      }
+      else if (s <= Upper)
+      {
+        fixedCost += this->T[i] * r[i];
+      }
+    }
+    this->Work += n;
+    return freeCount;
+  };
+  // Multiplier kappa when no variable is free: any kappa between the bounds'
+  // limits satisfies eq. 16; -1 when none does.
+  auto boundKappa = [&]() {
+    double lowest = 0.0, highest = Infinity;
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      if (this->State[i] == Upper)
+      {
+        lowest = std::max(lowest, 1.0 / this->G[i]);
+      }
+      else if (this->State[i] == Lower && this->G[i] > 0.0)
+      {
+        highest = std::min(highest, this->Lo[i] / this->G[i]);
+      }
+    }
+    if (lowest > highest * (1.0 + ReleaseTolerance))
+    {
+      return -1.0;
+    }
+    return std::isfinite(highest) ? (lowest > 0.0 ? std::sqrt(lowest * highest) : highest)
+                                  : std::max(lowest, 1.0);
+  };
+
+  result.State = Status::IterationLimit;
+  int stalls = 0;
+  int fullReleases = 0;
+  while (true)
+  {
+    if (result.Iterations >= this->Opts.MaxIterations || this->StepCount >= this->Opts.MaxSteps)
+    {
+      result.State = Status::IterationLimit;
+      break;
+    }
+    if (this->TimeUp())
+    {
+      result.State = Status::TimeLimit;
+      break;
+    }
+    ++result.Iterations;
+    ++this->StepCount;
+
+    double fixedCost = 0.0, weightSum = 0.0;
+    const std::size_t freeCount = subspace(fixedCost, weightSum);
+    const double slack = budget - fixedCost;
+    double kappa = Infinity;
+    if (freeCount > 0)
+    {
+      kappa = slack / weightSum; // eq. 14
+      bool moving = false;
+      for (std::size_t i = 0; i < n && !moving; ++i)
+      {
+        if (this->State[i] == Free)
+        {
+          moving = std::abs(kappa * this->G[i] - r[i]) >
+            StepTolerance + StepRelativeTolerance * r[i];
+        }
+      }
+      this->Work += n;
+      if (moving)
+      {
+        const double before = objective;
+        std::size_t changes = 0;
+        double stepSlack = slack, stepKappa = kappa;
+        if (this->Opts.ProjectedSteps && this->Opts.BlockRelease && this->Release(kappa, false))
+        {
+          // Released now the bounds whose multiplier estimate at this kappa
+          // is negative, so that one projected step covers them too (a warm
+          // start would otherwise need a second one after the d = 0 test).
+          // The free set changed: its slack and eq. 14 kappa with it.
+          double releasedFixed = 0.0, releasedSum = 0.0;
+          subspace(releasedFixed, releasedSum);
+          stepSlack = budget - releasedFixed;
+          stepKappa = stepSlack / releasedSum;
+          changes = 1;
+        }
+        if (!this->Opts.ProjectedSteps ||
+          !this->ProjectedStep(r, stepSlack, stepKappa, objective, changes))
+        {
+          changes += this->LineStep(r, stepKappa, objective);
+        }
+        // A step that changes neither f nor the working set would repeat.
+        stalls = objective < before || changes > 0 ? 0 : stalls + 1;
+        if (stalls >= 2)
+        {
+          break;
+        }
+        continue;
+      }
+    }
+    // d = 0: multipliers (eq. 16).
+    bool slackTime = false;
+    if (freeCount == 0)
+    {
+      slackTime = slack > 1e-12 * std::abs(budget);
+      if (!slackTime)
+      {
+        kappa = boundKappa();
+        if (kappa < 0.0)
+        {
+          // Degenerate vertex (everything at a bound, time tight) whose
+          // multipliers are not unique: free every bound and let the
+          // projected step solve the whole problem.
+          if (++fullReleases > 2)
+          {
+            break;
+          }
+          for (std::size_t i = 0; i < n; ++i)
+          {
+            if ((this->State[i] == Lower && this->G[i] > 0.0) || this->State[i] == Upper)
+            {
+              this->State[i] = Free;
+            }
+          }
+          continue;
+        }
+      }
+    }
+    if (!this->Release(kappa, slackTime))
+    {
+      result.State = Status::Optimal;
+      break;
+    }
+  }
+
+  // Report: objective, cost, multiplier and KKT residual at the returned point.
+  result.Objective = objectiveOf();
+  result.Cost = costOf();
+  double fixedCost = 0.0, weightSum = 0.0;
+  const std::size_t freeCount = subspace(fixedCost, weightSum);
+  double kappa = Infinity;
+  if (freeCount > 0)
+  {
+    kappa = (budget - fixedCost) / weightSum;
+  }
+  else if (budget - fixedCost <= 1e-12 * std::abs(budget))
+  {
+    kappa = boundKappa();
+    kappa = kappa < 0.0 ? Infinity : kappa;
+  }
+  double residual = 0.0;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const std::uint8_t s = this->State[i];
+    if (s > Upper)
+    {
+      continue;
+    }
+    const double target = this->G[i] > 0.0 ? Clamp(kappa * this->G[i], this->Lo[i], 1.0) : this->Lo[i];
+    residual = std::max(residual, std::abs(r[i] - target));
+    result.FreeCount += s == Free;
+    result.LowerCount += s == Lower;
+    result.UpperCount += s == Upper;
+  }
+  const double violation = (result.Cost - rawBudget) / rawBudget;
+  residual = std::max(residual, violation);
+  if (std::isfinite(kappa))
+  {
+    residual = std::max(residual, std::abs(violation));
+    result.Multiplier = std::pow(kappa, -(this->Alpha + 1.0));
+  }
+  result.KKTResidual = residual;
+  if (result.State == Status::IterationLimit && stalls >= 2 && residual <= 1e-8)
+  {
+    result.State = Status::Optimal;
+  }
+  return finish();
+}
+}

@@ -1,0 +1,149 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#ifndef timecritical_ActiveSetOptimizer_h
+#define timecritical_ActiveSetOptimizer_h
+
+#include "ResolutionProblem.h"
+#include "TimeCriticalRenderingCoreExport.h"
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace timecritical
+{
+/**
+ * Active-set solver of the resolution problem (Gobbetti & Bouvier section 5,
+ * Algorithm 1), anytime: every return is feasible and no worse than the start.
+ *
+ * Derivation used (rather than the typography of eq. 14 and 16). With
+ * gamma = 1 / (alpha + 1) and g_i = (c_i / tmax_i)^gamma, stationarity of the
+ * Lagrangian on the free set F gives r_i = kappa g_i with a single scalar
+ * kappa = lambda^-gamma fixed by the time constraint:
+ *   kappa = (Budget - sum_{i not in F} tmax_i r_i) / sum_{i in F} tmax_i g_i   (eq. 14)
+ *   lambda = kappa^-(alpha+1) >= 0 (time constraint)
+ *   lower bound of i: lambda tmax_i - c_i rmin_i^-(alpha+1), upper: c_i - lambda tmax_i   (eq. 16)
+ * f_i' = -c_i r^-(alpha+1) < 0 for every alpha > -1, alpha != 0, so the same
+ * formulas hold for the alpha < 0 families (eq. 16's r^(alpha-1) is a typo).
+ * A bound's multiplier is negative exactly when kappa g_i lies on the far
+ * side of the bound, which is the test used (dimensionless, no pow()).
+ *
+ * Per call, O(n) work per step and no allocation once sized:
+ * 1. the infeasible (cost(rmin) > Budget: rmin returned) and all-full
+ *    (cost(1) <= Budget: 1 returned) cases of section 5.3.1;
+ * 2. start: rmin (cold), or the caller's previous resolutions (warm, objects
+ *    given as NaN or <= 0 start at rmin), reduced by Beta until feasible,
+ *    least valuable first (smallest -f_i'/tmax_i; bucketed, not sorted);
+ * 3. Algorithm 1: working set = time constraint + bounds active at the start;
+ *    direction to the subspace minimizer (eq. 14); when it is reached,
+ *    multipliers (eq. 16) and release of negative ones; else a step.
+ *
+ * Two options, both on by default, turn what is O(n) iterations of O(n) in
+ * the textbook method into a handful (set both off for the paper's method):
+ * - ProjectedSteps: the bounds of free variables that a step runs into are
+ *   resolved inside the step (a safeguarded Newton iteration on kappa over the
+ *   free variables, each round O(n)) instead of stopping at the first one
+ *   (ratio test). The candidate is accepted only when feasible and not worse
+ *   than the current point; otherwise the ratio-test step is taken.
+ * - BlockRelease: every bound with a negative multiplier is released at once
+ *   instead of only the most negative one; the projected step puts back those
+ *   that should stay.
+ *
+ * TimeLimit (t_opt) is checked every ClockCheckWork object visits; at any stop
+ * (time, MaxIterations, MaxSteps) the current point is returned, feasible and
+ * with an objective that never increases with more iterations.
+ */
+class TIMECRITICALRENDERINGCORE_EXPORT ActiveSetOptimizer
+{
+public:
+  enum class Status
+  {
+    Optimal,        ///< KKT conditions hold
+    Unconstrained,  ///< cost(1) <= Budget: every object at full resolution
+    Infeasible,     ///< cost(rmin) > Budget: every object at rmin (over budget)
+    TimeLimit,      ///< stopped by TimeLimit, feasible
+    IterationLimit, ///< stopped by MaxIterations or MaxSteps, feasible
+    Empty,          ///< no object
+    InvalidInput    ///< alpha out of range or missing arrays
+  };
+
+  struct Options
+  {
+    double TimeLimit = 1e-3;             ///< t_opt (s) for the whole call; <= 0: return the start point
+    int MaxIterations = 100000;          ///< Algorithm 1 iterations
+    long MaxSteps = 10000000;            ///< O(n) passes (subspace solves and Newton rounds)
+    double Beta = 0.8;                   ///< warm start reduction factor (section 5.3.1), in (0, 1)
+    bool ProjectedSteps = true;          ///< resolve bounds within a step (see class comment)
+    bool BlockRelease = true;            ///< release all negative multipliers at once
+    std::size_t ClockCheckWork = 1 << 14; ///< object visits between two clock reads
+  };
+
+  struct Result
+  {
+    Status State = Status::Empty;
+    bool Converged = false;  ///< Optimal, Unconstrained or Empty
+    bool Infeasible = false; ///< Status::Infeasible
+    int Iterations = 0;      ///< Algorithm 1 iterations
+    long Steps = 0;          ///< O(n) passes, including Newton rounds of projected steps
+    double Objective = 0.0;  ///< f(r) returned
+    double InitialObjective = 0.0; ///< f at the start point (after the warm-start reduction)
+    double Cost = 0.0;       ///< sum tmax_i r_i returned (<= Budget unless infeasible)
+    double Multiplier = 0.0; ///< lambda of the time constraint (0 when slack)
+    double KKTResidual = 0.0; ///< max |r_i - clamp(kappa g_i)|, relative budget violation/slack
+    double Seconds = 0.0;    ///< wall time of the call
+    std::size_t FreeCount = 0, LowerCount = 0, UpperCount = 0; ///< final working set
+    std::size_t InvalidCount = 0; ///< objects with a NaN/negative tmax, left at rmin
+  };
+
+  ActiveSetOptimizer() = default;
+  explicit ActiveSetOptimizer(const Options& options);
+
+  void SetOptions(const Options& options) { this->Opts = options; }
+  const Options& GetOptions() const { return this->Opts; }
+
+  /// Size the buffers for n objects (Solve() grows them if needed, never shrinks).
+  void Reserve(std::size_t n);
+  std::size_t GetCapacity() const { return this->T.size(); }
+
+  /**
+   * Solve for problem.Count objects. resolutions (size Count): on input, when
+   * warmStart, the previous frame's resolutions (NaN or <= 0 for a new object);
+   * on output, the result. Objects with tmax = 0 get 1, with c = 0 get rmin.
+   */
+  Result Solve(const ResolutionProblem& problem, double* resolutions, bool warmStart);
+
+  static const char* GetStatusName(Status status);
+
+private:
+  enum : std::uint8_t
+  {
+    Free = 0,
+    Lower = 1,
+    Upper = 2,
+    PinnedLow = 3, ///< invalid tmax: left at rmin, not in the problem
+    PinnedHigh = 4 ///< tmax = 0: full resolution is free
+  };
+
+  double Power(double x) const; // x^gamma with fast paths
+  void BetaReduce(double* r, double budget, double cost);
+  bool ProjectedStep(double* r, double slack, double kappa0, double& objective, std::size_t& changes);
+  std::size_t LineStep(double* r, double kappa, double& objective);
+  bool Release(double kappa, bool slackTime);
+  bool TimeUp();
+
+  Options Opts;
+  // Per-object data of the current call (sized to the largest n seen).
+  std::vector<double> T, Lo, C, G;
+  std::vector<std::uint8_t> State;
+  std::vector<std::uint32_t> Order; // warm-start reduction order
+  std::vector<std::int32_t> Key;     // its buckets
+  // Current call.
+  std::size_t N = 0;
+  double Alpha = 1.0, Gamma = 0.5;
+  long StepCount = 0;
+  std::size_t Work = 0;
+  bool Expired = false;
+  double Deadline = 0.0; // steady clock seconds
+};
+}
+
+#endif

@@ -1,0 +1,49 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "ResolutionPolicy.h"
+
+#include <algorithm>
+#include <chrono>
+
+namespace timecritical
+{
+ResolutionProblem PolicyInput::GetProblem() const
+{
+  ResolutionProblem problem;
+  problem.Count = this->Count;
+  problem.Weight = this->Weight;
+  problem.MaxTime = this->MaxTime;
+  problem.MinResolution = this->MinResolution;
+  problem.Alpha = this->Alpha;
+  problem.Budget = this->TargetFrameTime - this->FixedTime;
+  return problem;
+}
+
+ResolutionPolicy::~ResolutionPolicy() = default;
+
+PolicyResult ResolutionPolicy::Select(const PolicyInput& input, double* r)
+{
+  using Clock = std::chrono::steady_clock;
+  const auto start = Clock::now();
+  PolicyResult result;
+  if (input.Count > 0 && r)
+  {
+    this->Choose(input, r, result);
+  }
+  result.Seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  const ResolutionProblem problem = input.GetProblem();
+  if (input.Count > 0 && r && input.MaxTime)
+  {
+    result.PredictedFrameTime = input.FixedTime + problem.EffectiveCost(r);
+    result.Objective = input.Weight && ResolutionProblem::IsValidAlpha(input.Alpha)
+      ? problem.Objective(r)
+      : 0.0;
+  }
+  else
+  {
+    result.PredictedFrameTime = input.FixedTime;
+  }
+  // Relative slack for the rounding of sums over many objects.
+  result.OverBudget = result.PredictedFrameTime > input.TargetFrameTime * (1.0 + 1e-9);
+  return result;
+}
+}

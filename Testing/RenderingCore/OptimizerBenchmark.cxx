@@ -1,0 +1,271 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// OptimizerBenchmark: time per solve of ActiveSetOptimizer on random W1-like
+// scenes of n = 100 ... 100,000 objects, cold (from rmin) and warm (from the
+// previous frame's solution after a camera move), against the exact
+// bisection reference and Funkhouser & Séquin's greedy; also the paper's plain
+// Algorithm 1 and the quality reached within a 1 ms time limit.
+//
+//   OptimizerBenchmark [--json path] [--quick] [--repeats N] [--seed S]
+#include "RenderingCoreTestUtilities.h"
+
+#include "ActiveSetOptimizer.h"
+#include "GreedyLODPolicy.h"
+#include "ReferenceResolutionSolver.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <string>
+#include <vector>
+
+namespace
+{
+using timecritical::ActiveSetOptimizer;
+using timecritical::GreedyLODPolicy;
+using timecritical::ReferenceResolutionSolver;
+using timecritical::ResolutionProblem;
+using timecritical_test::MakeRandomProblem;
+using timecritical_test::RandomProblem;
+using Clock = std::chrono::steady_clock;
+
+double Seconds(Clock::time_point a, Clock::time_point b)
+{
+  return std::chrono::duration<double>(b - a).count();
+}
+
+double Median(std::vector<double> v)
+{
+  if (v.empty())
+  {
+    return 0.0;
+  }
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+
+double Gap(double f, double reference)
+{
+  return (f - reference) / std::abs(reference);
+}
+
+/// One frame after a camera move: weights change by up to 10 %, the budget by up to 5 %.
+RandomProblem NextFrame(const RandomProblem& base, unsigned seed)
+{
+  RandomProblem p = base;
+  timecritical_test::Perturb(p, 0.10, seed);
+  const double s = 1.0 + 0.05 * std::sin(1.7 * seed);
+  p.Budget = p.CostAtMin() + s * (base.Budget - base.CostAtMin());
+  return p;
+}
+
+struct Row
+{
+  std::size_t N = 0;
+  double Alpha = 1.0;
+  std::string Mode;
+  double SolveMedian = 0.0, SolveMax = 0.0;
+  double Iterations = 0.0, Steps = 0.0;
+  double GapReference = 0.0; ///< max over the measured solves
+  double GapGreedy = 0.0;    ///< (f_greedy - f_opt) / |f_opt|, median
+  double GreedyMedian = 0.0;
+  double ReferenceSeconds = 0.0;
+  double PaperSeconds = -1.0;   ///< plain Algorithm 1 (cold), -1 when not run
+  double PaperIterations = 0.0;
+  double GapAt1ms = 0.0;        ///< gap of the 1 ms time-limited solve
+  bool Converged1ms = false;
+  bool AllOptimal = true;
+};
+
+Row Measure(std::size_t n, double alpha, bool warm, int repeats, unsigned seed, bool paper)
+{
+  Row row;
+  row.N = n;
+  row.Alpha = alpha;
+  row.Mode = warm ? "warm" : "cold";
+  const RandomProblem base = MakeRandomProblem(n, alpha, seed);
+  ActiveSetOptimizer::Options options;
+  options.TimeLimit = 60.0; // convergence time, not a deadline
+  ActiveSetOptimizer optimizer(options);
+  optimizer.Reserve(n);
+  GreedyLODPolicy greedy;
+  std::vector<double> r(n), previous(n), reference(n), greedyR(n), greedyPrevious(n);
+  std::vector<double> times, iterations, steps, greedyTimes, greedyGaps;
+
+  // The previous frame's solutions (warm starts).
+  optimizer.Solve(base.View(), previous.data(), false);
+  {
+    timecritical::PolicyInput in;
+    in.Count = n;
+    in.Weight = base.Weight.data();
+    in.MaxTime = base.MaxTime.data();
+    in.MinResolution = base.MinResolution.data();
+    in.Alpha = alpha;
+    in.TargetFrameTime = base.Budget;
+    greedy.Select(in, greedyPrevious.data());
+  }
+  const int referenceCount = n >= 100000 ? 3 : (n >= 10000 ? 5 : repeats);
+  for (int k = 0; k < repeats; ++k)
+  {
+    const RandomProblem p = NextFrame(base, seed * 1000u + static_cast<unsigned>(k) + 1u);
+    const ResolutionProblem view = p.View();
+    r = previous;
+    const auto start = Clock::now();
+    const auto result = optimizer.Solve(view, r.data(), warm);
+    const double t = Seconds(start, Clock::now());
+    times.push_back(t);
+    iterations.push_back(result.Iterations);
+    steps.push_back(static_cast<double>(result.Steps));
+    row.AllOptimal = row.AllOptimal && result.State == ActiveSetOptimizer::Status::Optimal;
+
+    timecritical::PolicyInput in;
+    in.Count = n;
+    in.Weight = p.Weight.data();
+    in.MaxTime = p.MaxTime.data();
+    in.MinResolution = p.MinResolution.data();
+    in.Alpha = alpha;
+    in.TargetFrameTime = p.Budget;
+    in.Previous = warm ? greedyPrevious.data() : nullptr;
+    const auto g = greedy.Select(in, greedyR.data());
+    greedyTimes.push_back(g.Seconds);
+    greedyGaps.push_back(Gap(g.Objective, result.Objective));
+
+    if (k < referenceCount)
+    {
+      const auto refStart = Clock::now();
+      const auto ref = ReferenceResolutionSolver::Solve(view, reference.data());
+      row.ReferenceSeconds = std::max(row.ReferenceSeconds, Seconds(refStart, Clock::now()));
+      row.GapReference = std::max(row.GapReference, std::abs(Gap(result.Objective, ref.Objective)));
+      if (k == 0)
+      {
+        // Anytime quality: the same solve under a 1 ms deadline (same sized
+        // optimizer, as in a renderer's steady state).
+        ActiveSetOptimizer::Options limited = options;
+        limited.TimeLimit = 1e-3;
+        optimizer.SetOptions(limited);
+        std::vector<double> q = previous;
+        const auto lr = optimizer.Solve(view, q.data(), warm);
+        optimizer.SetOptions(options);
+        row.GapAt1ms = Gap(lr.Objective, ref.Objective);
+        row.Converged1ms = lr.Converged;
+      }
+    }
+  }
+  row.SolveMedian = Median(times);
+  row.SolveMax = *std::max_element(times.begin(), times.end());
+  row.Iterations = Median(iterations);
+  row.Steps = Median(steps);
+  row.GapGreedy = Median(greedyGaps);
+  row.GreedyMedian = Median(greedyTimes);
+
+  if (paper && !warm)
+  {
+    ActiveSetOptimizer::Options plain;
+    plain.TimeLimit = 60.0;
+    plain.ProjectedSteps = false;
+    plain.BlockRelease = false;
+    ActiveSetOptimizer method(plain);
+    const RandomProblem p = NextFrame(base, seed * 1000u + 1u);
+    const auto start = Clock::now();
+    const auto result = method.Solve(p.View(), r.data(), false);
+    row.PaperSeconds = Seconds(start, Clock::now());
+    row.PaperIterations = result.Iterations;
+  }
+  return row;
+}
+}
+
+int main(int argc, char** argv)
+{
+  std::string json;
+  bool quick = false;
+  int repeats = 21;
+  unsigned seed = 1;
+  for (int i = 1; i < argc; ++i)
+  {
+    const std::string a = argv[i];
+    if (a == "--json" && i + 1 < argc)
+    {
+      json = argv[++i];
+    }
+    else if (a == "--quick")
+    {
+      quick = true;
+    }
+    else if (a == "--repeats" && i + 1 < argc)
+    {
+      repeats = std::max(1, std::atoi(argv[++i]));
+    }
+    else if (a == "--seed" && i + 1 < argc)
+    {
+      seed = static_cast<unsigned>(std::atoi(argv[++i]));
+    }
+    else
+    {
+      std::printf("usage: OptimizerBenchmark [--json path] [--quick] [--repeats N] [--seed S]\n");
+      return a == "--help" ? 0 : 2;
+    }
+  }
+  std::vector<std::size_t> sizes = { 100, 529, 1000, 10000, 100000 };
+  if (quick)
+  {
+    sizes = { 100, 529, 1000 };
+    repeats = std::min(repeats, 5);
+  }
+  std::vector<Row> rows;
+  std::printf("%7s %5s %4s | %9s %9s %5s %5s | %8s %9s | %8s %9s | %9s %6s | %9s\n", "n", "alpha",
+    "mode", "median", "max", "iter", "steps", "gap-ref", "ref(s)", "gap-grd", "greedy", "gap@1ms",
+    "conv", "paper(s)");
+  for (std::size_t n : sizes)
+  {
+    for (double alpha : { 1.0, 2.0, -0.5 })
+    {
+      for (bool warm : { false, true })
+      {
+        const Row row = Measure(n, alpha, warm, n >= 100000 ? std::min(repeats, 11) : repeats,
+          seed, n <= 10000);
+        rows.push_back(row);
+        char paper[32] = "-";
+        if (row.PaperSeconds >= 0.0)
+        {
+          std::snprintf(paper, sizeof(paper), "%.2e", row.PaperSeconds);
+        }
+        std::printf("%7zu %5.1f %4s | %7.1fus %7.1fus %5.0f %5.0f | %8.1e %9.2e | %8.2e %7.1fus | %9.1e %6s | %9s%s\n",
+          row.N, row.Alpha, row.Mode.c_str(), row.SolveMedian * 1e6, row.SolveMax * 1e6,
+          row.Iterations, row.Steps, row.GapReference, row.ReferenceSeconds, row.GapGreedy,
+          row.GreedyMedian * 1e6, row.GapAt1ms, row.Converged1ms ? "yes" : "no", paper,
+          row.AllOptimal ? "" : "  (not all optimal)");
+        std::fflush(stdout);
+      }
+    }
+  }
+  if (!json.empty())
+  {
+    std::ofstream out(json);
+    out << "{\n  \"benchmark\": \"OptimizerBenchmark\",\n  \"repeats\": " << repeats
+        << ",\n  \"seed\": " << seed << ",\n  \"rows\": [\n";
+    for (std::size_t i = 0; i < rows.size(); ++i)
+    {
+      const Row& r = rows[i];
+      char line[1024];
+      std::snprintf(line, sizeof(line),
+        "    {\"n\": %zu, \"alpha\": %g, \"mode\": \"%s\", \"median_seconds\": %.9g, "
+        "\"max_seconds\": %.9g, \"iterations\": %g, \"steps\": %g, \"all_optimal\": %s, "
+        "\"gap_vs_reference\": %.3g, \"reference_seconds\": %.6g, \"gap_greedy_vs_optimizer\": %.6g, "
+        "\"greedy_median_seconds\": %.9g, \"gap_at_1ms\": %.3g, \"converged_at_1ms\": %s, "
+        "\"paper_method_seconds\": %s, \"paper_method_iterations\": %g}%s\n",
+        r.N, r.Alpha, r.Mode.c_str(), r.SolveMedian, r.SolveMax, r.Iterations, r.Steps,
+        r.AllOptimal ? "true" : "false", r.GapReference, r.ReferenceSeconds, r.GapGreedy,
+        r.GreedyMedian, r.GapAt1ms, r.Converged1ms ? "true" : "false",
+        r.PaperSeconds >= 0.0 ? std::to_string(r.PaperSeconds).c_str() : "null",
+        r.PaperIterations, i + 1 < rows.size() ? "," : "");
+      out << line;
+    }
+    out << "  ]\n}\n";
+    std::printf("wrote %s\n", json.c_str());
+  }
+  return 0;
+}
