@@ -9,7 +9,7 @@ out="${1:-$root/demo-output}"
 "$root/scripts/build.sh"
 launcher=()
 if [ -z "${DISPLAY:-}" ]; then
-  launcher=(xvfb-run -a -s "-screen 0 1024x768x24")
+  launcher=(xvfb-run -a -s "-screen 0 1024x768x24 -noreset")
 fi
 PYTHONPATH="$build/lib/python3/dist-packages${PYTHONPATH:+:$PYTHONPATH}" \
   "${launcher[@]}" /usr/bin/python3 "$root/scripts/tom_demo.py" --output "$out"

@@ -8,83 +8,23 @@
 #include "TOMTraversal.h"
 #include "TOMValidator.h"
 
+#include "AllocationCounter.h"
 #include "TestMeshIO.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <array>
-#include <atomic>
 #include <cmath>
 #include <cstdlib>
 #include <limits>
 #include <map>
-#include <new>
 #include <numeric>
 #include <set>
 #include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
-
-// Counting global allocator, to check that the collapses do not allocate:
-// the number of allocations of a build must not grow with the mesh. Every form
-// is replaced so that new/delete pairs stay matched.
-namespace
-{
-std::atomic<size_t> AllocationCount{ 0 };
-
-[[gnu::noinline]] void* CountedAllocate(std::size_t size) noexcept
-{
-  ++AllocationCount;
-  return std::malloc(size ? size : 1);
-}
-}
-
-[[gnu::noinline]] void* operator new(std::size_t size)
-{
-  if (void* p = CountedAllocate(size))
-  {
-    return p;
-  }
-  throw std::bad_alloc();
-}
-[[gnu::noinline]] void* operator new[](std::size_t size)
-{
-  return ::operator new(size);
-}
-[[gnu::noinline]] void* operator new(std::size_t size, const std::nothrow_t&) noexcept
-{
-  return CountedAllocate(size);
-}
-[[gnu::noinline]] void* operator new[](std::size_t size, const std::nothrow_t&) noexcept
-{
-  return CountedAllocate(size);
-}
-[[gnu::noinline]] void operator delete(void* p) noexcept
-{
-  std::free(p);
-}
-[[gnu::noinline]] void operator delete[](void* p) noexcept
-{
-  std::free(p);
-}
-[[gnu::noinline]] void operator delete(void* p, std::size_t) noexcept
-{
-  std::free(p);
-}
-[[gnu::noinline]] void operator delete[](void* p, std::size_t) noexcept
-{
-  std::free(p);
-}
-[[gnu::noinline]] void operator delete(void* p, const std::nothrow_t&) noexcept
-{
-  std::free(p);
-}
-[[gnu::noinline]] void operator delete[](void* p, const std::nothrow_t&) noexcept
-{
-  std::free(p);
-}
 
 using namespace timecritical;
 using timecritical::testing::TriangleMesh;
@@ -988,9 +928,9 @@ TEST(TOMBuilder, CollapsesDoNotAllocate)
   // collapses (large arrays are allocated once; see also the huge-page
   // allocator, which bypasses operator new).
   auto allocations = [](const TriangleMesh& mesh) {
-    const size_t before = AllocationCount.load();
+    const size_t before = timecritical::testing::GetAllocationCount();
     const TOMBuildResult r = Build(mesh);
-    const size_t count = AllocationCount.load() - before;
+    const size_t count = timecritical::testing::GetAllocationCount() - before;
     EXPECT_EQ(TOMValidator::Check(r.Mesh), "");
     return count;
   };

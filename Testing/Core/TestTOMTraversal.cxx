@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Tests of TOMTraversal against hand-built TOMs and against a naive replay of
 // the substitutions of random TOMs built by random legal edge collapses.
+#include "AllocationCounter.h"
 #include "TOMMesh.h"
 #include "TOMTraversal.h"
 
@@ -8,83 +9,12 @@
 
 #include <algorithm>
 #include <array>
-#include <atomic>
 #include <cmath>
 #include <cstdlib>
 #include <limits>
-#include <new>
 #include <numeric>
 #include <random>
 #include <vector>
-
-// Counting global allocator: Extract must not allocate once its buffer
-// suffices. Every form is replaced so that new/delete pairs stay matched (also
-// under AddressSanitizer); kept out of line so GCC does not inline malloc/free
-// into them and flag the pairs (-Wmismatched-new-delete).
-namespace
-{
-std::atomic<size_t> AllocationCount{ 0 };
-
-[[gnu::noinline]] void* CountedAllocate(std::size_t size) noexcept
-{
-  ++AllocationCount;
-  return std::malloc(size ? size : 1);
-}
-}
-
-[[gnu::noinline]] void* operator new(std::size_t size)
-{
-  if (void* p = CountedAllocate(size))
-  {
-    return p;
-  }
-  throw std::bad_alloc();
-}
-
-[[gnu::noinline]] void* operator new[](std::size_t size)
-{
-  return ::operator new(size);
-}
-
-[[gnu::noinline]] void* operator new(std::size_t size, const std::nothrow_t&) noexcept
-{
-  return CountedAllocate(size);
-}
-
-[[gnu::noinline]] void* operator new[](std::size_t size, const std::nothrow_t&) noexcept
-{
-  return CountedAllocate(size);
-}
-
-[[gnu::noinline]] void operator delete(void* p) noexcept
-{
-  std::free(p);
-}
-
-[[gnu::noinline]] void operator delete[](void* p) noexcept
-{
-  std::free(p);
-}
-
-[[gnu::noinline]] void operator delete(void* p, std::size_t) noexcept
-{
-  std::free(p);
-}
-
-[[gnu::noinline]] void operator delete[](void* p, std::size_t) noexcept
-{
-  std::free(p);
-}
-
-[[gnu::noinline]] void operator delete(void* p, const std::nothrow_t&) noexcept
-{
-  std::free(p);
-}
-
-[[gnu::noinline]] void operator delete[](void* p, const std::nothrow_t&) noexcept
-{
-  std::free(p);
-}
 
 namespace
 {
@@ -628,7 +558,7 @@ TEST(TOMTraversal, ExtractDoesNotAllocateWhenBufferSuffices)
   const uint32_t* data = out.data();
   const size_t capacity = out.capacity();
 
-  const size_t before = AllocationCount.load();
+  const size_t before = timecritical::testing::GetAllocationCount();
   uint64_t steps = 0;
   EXPECT_EQ(traversal.Extract(n, out, &steps), full);
   for (uint32_t count = base; count <= n; ++count)
@@ -637,7 +567,7 @@ TEST(TOMTraversal, ExtractDoesNotAllocateWhenBufferSuffices)
     EXPECT_EQ(out.size(), 3 * size_t(full)); // never shrunk
     traversal.Extract(count, out.data(), full, &steps);
   }
-  EXPECT_EQ(AllocationCount.load(), before);
+  EXPECT_EQ(timecritical::testing::GetAllocationCount(), before);
   EXPECT_EQ(out.data(), data);
   EXPECT_EQ(out.capacity(), capacity);
   EXPECT_EQ(out.size(), 3 * size_t(full)); // never shrunk

@@ -9,12 +9,10 @@
 #include "ResolutionProblem.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <cstddef>
 #include <cstdlib>
 #include <limits>
-#include <new>
 #include <random>
 #include <vector>
 
@@ -200,46 +198,6 @@ inline KKTCheck CheckKKT(const timecritical::ResolutionProblem& p, const double*
   }
   return k;
 }
-
-/// Global allocation counter (operator new replaced in the test that defines
-/// TIMECRITICAL_COUNT_ALLOCATIONS before including this header).
-inline std::atomic<long>& AllocationCount()
-{
-  static std::atomic<long> count{ 0 };
-  return count;
 }
-}
-
-#ifdef TIMECRITICAL_COUNT_ALLOCATIONS
-void* operator new(std::size_t size)
-{
-  ++timecritical_test::AllocationCount();
-  if (void* p = std::malloc(size == 0 ? 1 : size))
-  {
-    return p;
-  }
-  throw std::bad_alloc();
-}
-void* operator new[](std::size_t size)
-{
-  return ::operator new(size);
-}
-void operator delete(void* p) noexcept
-{
-  std::free(p);
-}
-void operator delete[](void* p) noexcept
-{
-  std::free(p);
-}
-void operator delete(void* p, std::size_t) noexcept
-{
-  std::free(p);
-}
-void operator delete[](void* p, std::size_t) noexcept
-{
-  std::free(p);
-}
-#endif
 
 #endif

@@ -3,7 +3,7 @@
 // agreement with the bisection reference, feasibility and monotone objective
 // at every stop, the special cases of section 5.3.1, warm starts, and no
 // allocation in steady state.
-#define TIMECRITICAL_COUNT_ALLOCATIONS
+#include "AllocationCounter.h"
 #include "RenderingCoreTestUtilities.h"
 
 #include "ActiveSetOptimizer.h"
@@ -341,14 +341,14 @@ TEST(ActiveSetOptimizer, NoAllocationInSteadyState)
   optimizer.Solve(p.View(), r.data(), false);
   const std::size_t capacity = optimizer.GetCapacity();
   RandomProblem smaller = MakeRandomProblem(1500, 1.0, 5);
-  const long before = timecritical_test::AllocationCount().load();
+  const long before = static_cast<long>(timecritical::testing::GetAllocationCount());
   for (int frame = 0; frame < 20; ++frame)
   {
     timecritical_test::Perturb(p, 0.05, static_cast<unsigned>(frame));
     optimizer.Solve(p.View(), r.data(), true);
     optimizer.Solve(smaller.View(), r.data(), frame % 2 == 0);
   }
-  const long after = timecritical_test::AllocationCount().load();
+  const long after = static_cast<long>(timecritical::testing::GetAllocationCount());
   EXPECT_EQ(after - before, 0);
   EXPECT_EQ(optimizer.GetCapacity(), capacity);
 }

@@ -2,7 +2,7 @@
 // Tests of CostModelCalibrator on synthetic frames with known coefficients:
 // recovery under noise and 10% outliers (batch and online), adaptation when
 // the "hardware" changes, and robustness to garbage input.
-#define TIMECRITICAL_COUNT_ALLOCATIONS
+#include "AllocationCounter.h"
 #include "RenderingCoreTestUtilities.h"
 
 #include "CostModelCalibrator.h"
@@ -283,12 +283,12 @@ TEST(CostModelCalibrator, UpdateDoesNotAllocate)
 {
   FrameSource source(5);
   CostModelCalibrator calibrator(D);
-  const long before = timecritical_test::AllocationCount().load();
+  const long before = static_cast<long>(timecritical::testing::GetAllocationCount());
   for (int k = 0; k < 1000; ++k)
   {
     const Features f = source.Next();
     calibrator.Update(f.data(), source.Measure(f, Truth));
   }
-  EXPECT_EQ(timecritical_test::AllocationCount().load() - before, 0);
+  EXPECT_EQ(static_cast<long>(timecritical::testing::GetAllocationCount()) - before, 0);
 }
 }

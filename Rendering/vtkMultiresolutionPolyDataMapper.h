@@ -1,0 +1,194 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @class   vtkMultiresolutionPolyDataMapper
+ * @brief   draws many Totally Ordered Meshes, each at its own resolution, in O(1) draw calls
+ *
+ * Input is a vtkPolyData or a composite dataset (vtkMultiBlockDataSet,
+ * vtkPartitionedDataSet, vtkPartitionedDataSetCollection). Every non-empty
+ * polydata leaf is an *object* with its own resolution, numbered in the
+ * composite iteration order (0 for polydata input).
+ *
+ * Why one draw call: with Mesa llvmpipe one draw call costs 0.25-0.35 ms, so
+ * hundreds of objects drawn separately cost more than the frame budget before
+ * a single triangle is rasterized. All leaves are concatenated once into one
+ * vertex buffer group (positions, normals, scalars, texture coordinates, in
+ * leaf order); each frame only the index buffer is rewritten: the active
+ * triangles of every object, written by the TOM traversal core with the
+ * object's vertex offset added, without allocation once the buffers have
+ * grown. A resolution of 0 leaves the object out (culled).
+ *
+ * Otherwise it behaves like VTK's polydata mapper: scalar coloring, lighting,
+ * surface/wireframe/points representation, software picking (vtkCellPicker
+ * reports the composite flat index and the leaf's cell id, at full resolution).
+ * Set composite input with SetInputDataObject() or SetInputConnection().
+ * Point and cell data arrays are those common to all leaves (as
+ * vtkAppendPolyData keeps them). Cell colors and cell normals stay right at
+ * every resolution: VTK looks them up by primitive id, so their textures are
+ * rebuilt in drawn order with the index buffer (only when cell data is used).
+ *
+ * Resolutions are render state: setting them does not Modified() the mapper
+ * (that would rebuild every buffer and recompile shaders); the next render
+ * rewrites the index buffer if any resolution changed.
+ *
+ * ColorByResolution draws the papers' resolution maps: each object in one
+ * grey level, 0.25 + 0.75 f with f its drawn fraction of triangles quantized
+ * to 64 levels (lighter = more detail), lit like any surface. The grey levels
+ * are a point color array of this mapper: in map mode the color buffer
+ * follows the resolutions, and only the vertices of objects whose level
+ * changed are rewritten in place. Turning it off restores normal coloring.
+ *
+ * Leaves that are not valid TOMs render at full resolution with one warning
+ * per mapper; their vertices, lines and strips are always drawn in full (in
+ * extra draw calls, whatever their resolution) and edge flags are ignored.
+ *
+ * Limitations: hardware selection (vtkHardwareSelector, area picking) sees
+ * one block and primitive ids of the drawn triangles, so its cell ids are
+ * wrong below full resolution; use vtkCellPicker. The merged leaves are a
+ * second copy of the input's points and arrays in memory, and the index
+ * buffer has a CPU copy of up to 12 bytes per full-resolution triangle.
+ *
+ * @sa vtkTOMPolyDataMapper vtkTimeCriticalRenderer vtkTOMBuilder
+ */
+#ifndef vtkMultiresolutionPolyDataMapper_h
+#define vtkMultiresolutionPolyDataMapper_h
+
+#include "TimeCriticalRenderingModule.h" // for export macro
+#include "vtkOpenGLPolyDataMapper.h"
+
+#include <memory> // for std::unique_ptr
+
+class TIMECRITICALRENDERING_EXPORT vtkMultiresolutionPolyDataMapper : public vtkOpenGLPolyDataMapper
+{
+public:
+  static vtkMultiresolutionPolyDataMapper* New();
+  vtkTypeMacro(vtkMultiresolutionPolyDataMapper, vtkOpenGLPolyDataMapper);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /**
+   * Bring the input up to date and (re)read its objects when it changed.
+   * Rendering does this itself; call it to query objects before the first
+   * render (vtkTimeCriticalRenderer does). Resolutions of objects that keep
+   * their index survive a re-read; new objects start at 1.
+   */
+  void UpdateObjects();
+
+  /// Objects found by the last UpdateObjects() or render.
+  vtkIdType GetNumberOfObjects() const;
+
+  ///@{
+  /**
+   * Resolution of object i: fraction of its full triangle count, in [0, 1];
+   * values in (0, coarsest] draw the coarsest mesh, 0 draws nothing. Out of
+   * range indices and NaN are reported with an error and ignored.
+   */
+  void SetObjectResolution(vtkIdType i, double r);
+  double GetObjectResolution(vtkIdType i) const;
+  ///@}
+
+  /// Set every object's resolution.
+  void SetResolution(double r);
+
+#ifndef __VTK_WRAP__
+  /// Set resolutions of objects [0, n) from r (n must equal GetNumberOfObjects()).
+  void SetObjectResolutions(const double* r, vtkIdType n);
+#endif
+
+  ///@{
+  /// Per-object data (valid after UpdateObjects()).
+  void GetObjectBounds(vtkIdType i, double bounds[6]) const;
+  vtkIdType GetObjectNumberOfTriangles(vtkIdType i) const; ///< at full resolution
+  vtkIdType GetObjectNumberOfVertices(vtkIdType i) const;  ///< at full resolution
+  double GetObjectCoarsestResolution(vtkIdType i) const; ///< base triangles / all; 1 when not a TOM
+  bool GetObjectIsTOM(vtkIdType i) const;
+  unsigned int GetObjectFlatIndex(vtkIdType i) const; ///< composite flat index (0 for polydata)
+  vtkIdType GetObjectRenderedTriangles(vtkIdType i) const; ///< drawn by the last render
+  ///@}
+
+  ///@{
+  /// Totals of the last render.
+  vtkGetMacro(RenderedTriangles, vtkIdType);
+  vtkGetMacro(RenderedVertices, vtkIdType);
+  vtkGetMacro(NumberOfDrawCalls, int);
+  ///@}
+
+  ///@{
+  /// Resolution map: grey level per object, lighter = more detail. Default off.
+  vtkSetMacro(ColorByResolution, bool);
+  vtkGetMacro(ColorByResolution, bool);
+  vtkBooleanMacro(ColorByResolution, bool);
+  ///@}
+
+  /// Bounds of the whole input (all leaves).
+  void ComputeBounds() override;
+  double* GetBounds() VTK_SIZEHINT(6) override;
+  void GetBounds(double bounds[6]) override
+  {
+    this->Superclass::GetBounds(bounds);
+  }
+
+  void RenderPiece(vtkRenderer* ren, vtkActor* act) override;
+  void ReleaseGraphicsResources(vtkWindow* window) override;
+
+  ///@{
+  /**
+   * Scalars are mapped from the merged leaves (vtkMapper's versions read
+   * GetInput(), which is null for composite input); with ColorByResolution the
+   * resolution map's colors are returned instead.
+   */
+  using Superclass::MapScalars;
+  vtkUnsignedCharArray* MapScalars(double alpha) override;
+  vtkUnsignedCharArray* MapScalars(double alpha, int& cellFlag) override;
+  bool HasTranslucentPolygonalGeometry() override;
+  ///@}
+
+  /// First point of object i in the merged vertex buffer (indices drawn for it are offset by this).
+  vtkIdType GetObjectVertexOffset(vtkIdType i) const;
+
+  ///@{
+  /**
+   * Diagnostics (used by the tests): how many times the vertex buffers were
+   * (re)built by the superclass and the index buffer was filled, when the
+   * vertex buffer of an attribute ("vertexMC", "normalMC", "scalarColor") was
+   * last uploaded (0 when there is none), and the indices drawn for the
+   * triangle primitive by the last render (merged point ids).
+   */
+  vtkIdType GetVertexBufferBuildCount() const;
+  vtkIdType GetIndexBufferBuildCount() const;
+  vtkMTimeType GetVertexBufferUploadTime(const char* attribute);
+  vtkIdType GetLastIndexCount() const;
+#ifndef __VTK_WRAP__
+  const unsigned int* GetLastIndices() const;
+#endif
+  ///@}
+
+protected:
+  vtkMultiresolutionPolyDataMapper();
+  ~vtkMultiresolutionPolyDataMapper() override;
+
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  bool GetNeedToRebuildBufferObjects(vtkRenderer* ren, vtkActor* act) override;
+  void BuildBufferObjects(vtkRenderer* ren, vtkActor* act) override;
+  void BuildIBO(vtkRenderer* ren, vtkActor* act, vtkPolyData* poly) override;
+  void BuildCellTextures(
+    vtkRenderer* ren, vtkActor* act, vtkCellArray* prims[4], int representation) override;
+
+  vtkIdType RenderedTriangles = 0;
+  vtkIdType RenderedVertices = 0;
+  int NumberOfDrawCalls = 0;
+  bool ColorByResolution = false;
+
+private:
+  vtkMultiresolutionPolyDataMapper(const vtkMultiresolutionPolyDataMapper&) = delete;
+  void operator=(const vtkMultiresolutionPolyDataMapper&) = delete;
+
+  bool IsValidObject(vtkIdType i) const; ///< with an error when not
+  void ReadObjects(vtkDataObject* input);
+  void FillIndexBuffer(vtkRenderer* ren, vtkActor* act);
+  void UploadCellTextures(vtkRenderer* ren, size_t primitives);
+  void UploadResolutionColors();
+
+  struct Internals;
+  std::unique_ptr<Internals> Internal;
+};
+
+#endif

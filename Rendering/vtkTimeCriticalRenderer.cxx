@@ -1,0 +1,935 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtkTimeCriticalRenderer.h"
+
+#include "vtkMultiresolutionPolyDataMapper.h"
+
+#include "ActiveSetPolicy.h"
+#include "CostModelCalibrator.h"
+#include "DegradationModel.h"
+#include "FeedbackPolicy.h"
+#include "FrameCostModel.h"
+#include "FullResolutionPolicy.h"
+#include "GreedyLODPolicy.h"
+#include "StaticThresholdPolicy.h"
+#include "ViewHeuristics.h"
+
+#include "vtkActor.h"
+#include "vtkCamera.h"
+#include "vtkCommand.h"
+#include "vtkMapper.h"
+#include "vtkMatrix4x4.h"
+#include "vtkObjectFactory.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkPolyData.h"
+#include "vtkProp.h"
+#include "vtkRenderWindow.h"
+#include "vtkWeakPointer.h"
+#include "vtk_glew.h"
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <unordered_map>
+#include <utility>
+#include <vector>
+
+namespace
+{
+using Clock = std::chrono::steady_clock;
+constexpr double NaN = std::numeric_limits<double>::quiet_NaN();
+constexpr std::size_t FeatureCount = timecritical::FrameCostModel::FeatureCount;
+
+double Seconds(Clock::time_point a, Clock::time_point b)
+{
+  return std::chrono::duration<double>(b - a).count();
+}
+
+/// Starting coefficients, of the order of Mesa llvmpipe at 512x512 on two
+/// cores; calibration replaces them within the first frames.
+timecritical::FrameCostModel::Coefficients DefaultCoefficients()
+{
+  timecritical::FrameCostModel::Coefficients c;
+  c.Frame = 2e-3;
+  c.DrawCall = 0.3e-3;
+  c.Object = 0.0;
+  c.Triangle = 1.5e-6;
+  c.Pixel = 2e-9;
+  return c;
+}
+
+/// Typical magnitude of each feature, so the calibrator works on scaled values.
+const double FeatureScales[FeatureCount] = { 1.0, 10.0, 500.0, 1e5, 1e6 };
+}
+
+struct vtkTimeCriticalRenderer::Internals
+{
+  // Models and policies (one instance each, reused every frame).
+  timecritical::FrameCostModel Model{ DefaultCoefficients(),
+    timecritical::FrameCostModel::PixelMode::Additive };
+  timecritical::CostModelCalibrator Calibrator{ FeatureCount,
+    timecritical::CostModelCalibrator::Options(), FeatureScales };
+  timecritical::DegradationModel Degradation;
+  timecritical::ActiveSetPolicy ActiveSet;
+  timecritical::FullResolutionPolicy FullResolution;
+  timecritical::StaticThresholdPolicy Static;
+  timecritical::FeedbackPolicy Feedback;
+  timecritical::GreedyLODPolicy Greedy;
+
+  // The window whose Start/End events time the frames.
+  vtkWeakPointer<vtkRenderWindow> Window;
+  unsigned long StartTag = 0, EndTag = 0;
+  Clock::time_point FrameStart;
+  bool FrameStartValid = false;
+  bool FramePending = false; // this renderer drew in the window's current frame
+  std::array<double, FeatureCount> Features{};
+
+  bool StillRequested = false;
+  bool CalibrationRequested = false;
+
+  // Multiresolution actors of the frame and their objects.
+  struct ActorEntry
+  {
+    vtkActor* Actor = nullptr;
+    vtkMultiresolutionPolyDataMapper* Mapper = nullptr;
+    std::size_t First = 0, Count = 0; // object range
+    std::array<double, 16> Matrix{};  // box coordinates -> clip space
+  };
+  std::vector<ActorEntry> Actors;
+  std::vector<std::pair<vtkWeakPointer<vtkActor>, double>> Importance;
+
+  // Per object (frame numbering).
+  std::vector<std::size_t> ObjectActor;
+  std::vector<vtkIdType> ObjectIndex;
+  std::vector<std::array<double, 6>> Bounds;
+  std::vector<double> MaxTriangles, MaxVertices, Coarsest, Pixels, CenterX, CenterY, Resolution,
+    PreviousResolution, Velocity, Eccentricity, Importances;
+  std::vector<char> Culled;
+  std::vector<vtkIdType> Triangles;
+
+  // Visible objects, compacted for the policies.
+  std::vector<std::size_t> Visible;
+  std::vector<timecritical::DegradationModel::ObjectView> Views;
+  std::vector<double> Weight, MaxTime, MinResolution, VisiblePixels, VisibleTriangles, Previous,
+    Chosen;
+
+  // What each mapper's objects looked like last frame (for warm start and velocity).
+  struct MapperHistory
+  {
+    std::vector<double> Resolution, CenterX, CenterY;
+    bool Seen = false;
+  };
+  std::unordered_map<vtkMultiresolutionPolyDataMapper*, MapperHistory> History;
+  std::vector<double> ResolutionScratch;
+
+  // Ordinary props.
+  timecritical::FrameCostModel::FrameLoad Load;
+  double OtherTriangleCount = 0.0;
+  double TotalPixels = 0.0;
+  double ViewportWidth = 0.0, ViewportHeight = 0.0;
+
+  timecritical::ResolutionPolicy* GetPolicy(int policy)
+  {
+    switch (policy)
+    {
+      case vtkTimeCriticalRenderer::FULL_RESOLUTION:
+        return &this->FullResolution;
+      case vtkTimeCriticalRenderer::STATIC_THRESHOLD:
+        return &this->Static;
+      case vtkTimeCriticalRenderer::FEEDBACK:
+        return &this->Feedback;
+      case vtkTimeCriticalRenderer::GREEDY_LOD:
+        return &this->Greedy;
+      default:
+        return &this->ActiveSet;
+    }
+  }
+
+  void StoreCoefficients()
+  {
+    double theta[FeatureCount];
+    this->Calibrator.GetCoefficients(theta);
+    this->Model.SetFeatureWeights(theta);
+  }
+
+  void ResetCalibrator()
+  {
+    double theta[FeatureCount];
+    this->Model.GetFeatureWeights(theta);
+    this->Calibrator.SetCoefficients(theta);
+  }
+};
+
+vtkStandardNewMacro(vtkTimeCriticalRenderer);
+
+vtkTimeCriticalRenderer::vtkTimeCriticalRenderer()
+  : MeasuredFrameTime(NaN)
+  , Internal(new Internals)
+{
+  this->Internal->ResetCalibrator();
+  this->Internal->Static.SetPixelsPerTriangle(this->StaticPixelsPerTriangle);
+  this->Internal->Feedback.SetInitialPixelsPerTriangle(this->StaticPixelsPerTriangle);
+  this->SetDegradationFamily(HITCHNER);
+  this->SetOptimizationTimeLimit(this->OptimizationTimeLimit);
+}
+
+vtkTimeCriticalRenderer::~vtkTimeCriticalRenderer()
+{
+  if (vtkRenderWindow* window = this->Internal->Window)
+  {
+    window->RemoveObserver(this->Internal->StartTag);
+    window->RemoveObserver(this->Internal->EndTag);
+  }
+}
+
+//------------------------------------------------------------------------------
+// Settings
+
+void vtkTimeCriticalRenderer::SetTargetFrameTime(double seconds)
+{
+  if (!(seconds > 0.0) || !std::isfinite(seconds))
+  {
+    vtkErrorMacro("TargetFrameTime must be a positive, finite number of seconds, not "
+      << seconds << "; keeping " << this->TargetFrameTime);
+    return;
+  }
+  if (seconds != this->TargetFrameTime)
+  {
+    this->TargetFrameTime = seconds;
+    this->Modified();
+  }
+}
+
+void vtkTimeCriticalRenderer::SetOptimizationTimeLimit(double seconds)
+{
+  if (!(seconds >= 0.0) || !std::isfinite(seconds))
+  {
+    vtkErrorMacro("OptimizationTimeLimit must be a finite number of seconds >= 0, not "
+      << seconds << "; keeping " << this->OptimizationTimeLimit);
+    return;
+  }
+  this->OptimizationTimeLimit = seconds;
+  auto options = this->Internal->ActiveSet.GetOptions();
+  options.TimeLimit = seconds;
+  this->Internal->ActiveSet.SetOptions(options);
+  this->Modified();
+}
+
+void vtkTimeCriticalRenderer::SetPolicy(int policy)
+{
+  if (policy < ACTIVE_SET || policy > GREEDY_LOD)
+  {
+    vtkErrorMacro("Unknown policy " << policy << "; keeping " << this->GetPolicyAsString());
+    return;
+  }
+  if (policy != this->Policy)
+  {
+    this->Policy = policy;
+    this->Internal->GetPolicy(policy)->Reset();
+    this->Modified();
+  }
+}
+
+const char* vtkTimeCriticalRenderer::GetPolicyAsString() const
+{
+  return this->Internal->GetPolicy(this->Policy)->GetName();
+}
+
+void vtkTimeCriticalRenderer::SetDegradationFamily(int family)
+{
+  using Model = timecritical::DegradationModel;
+  if (family < HITCHNER || family > YANG_GU_KANG)
+  {
+    vtkErrorMacro("Unknown degradation family " << family);
+    return;
+  }
+  this->DegradationFamily = family;
+  this->Internal->Degradation.SetConfig(Model::MakeConfig(static_cast<Model::Family>(family)));
+  this->Modified();
+}
+
+void vtkTimeCriticalRenderer::SetStaticPixelsPerTriangle(double k)
+{
+  if (!(k > 0.0) || !std::isfinite(k))
+  {
+    vtkErrorMacro("StaticPixelsPerTriangle must be positive and finite, not " << k);
+    return;
+  }
+  this->StaticPixelsPerTriangle = k;
+  this->Internal->Static.SetPixelsPerTriangle(k);
+  this->Internal->Feedback.SetInitialPixelsPerTriangle(k);
+  this->Modified();
+}
+
+void vtkTimeCriticalRenderer::SetImportance(vtkActor* actor, double importance)
+{
+  if (!actor || !(importance >= 0.0) || !std::isfinite(importance))
+  {
+    vtkErrorMacro("SetImportance needs an actor and a finite importance >= 0, not " << importance);
+    return;
+  }
+  auto& list = this->Internal->Importance;
+  list.erase(std::remove_if(list.begin(), list.end(),
+               [actor](const std::pair<vtkWeakPointer<vtkActor>, double>& entry)
+               { return !entry.first || entry.first == actor; }),
+    list.end());
+  list.emplace_back(actor, importance);
+  this->Modified();
+}
+
+double vtkTimeCriticalRenderer::GetImportance(vtkActor* actor) const
+{
+  for (const auto& entry : this->Internal->Importance)
+  {
+    if (entry.first == actor)
+    {
+      return entry.second;
+    }
+  }
+  return 1.0;
+}
+
+void vtkTimeCriticalRenderer::SetCostCoefficients(
+  double frame, double drawCall, double triangle, double pixel)
+{
+  const double values[] = { frame, drawCall, triangle, pixel };
+  for (double value : values)
+  {
+    if (!(value >= 0.0) || !std::isfinite(value))
+    {
+      vtkErrorMacro("Cost coefficients must be finite and >= 0");
+      return;
+    }
+  }
+  auto c = this->Internal->Model.GetCoefficients();
+  c.Frame = frame;
+  c.DrawCall = drawCall;
+  c.Object = 0.0;
+  c.Triangle = triangle;
+  c.Pixel = pixel;
+  this->Internal->Model.SetCoefficients(c);
+  this->Internal->ResetCalibrator();
+  this->Modified();
+}
+
+double vtkTimeCriticalRenderer::GetFrameCost() const
+{
+  return this->Internal->Model.GetCoefficients().Frame;
+}
+double vtkTimeCriticalRenderer::GetDrawCallCost() const
+{
+  return this->Internal->Model.GetCoefficients().DrawCall;
+}
+double vtkTimeCriticalRenderer::GetTriangleCost() const
+{
+  return this->Internal->Model.GetCoefficients().Triangle;
+}
+double vtkTimeCriticalRenderer::GetPixelCost() const
+{
+  return this->Internal->Model.GetCoefficients().Pixel;
+}
+
+void vtkTimeCriticalRenderer::SetCostMargin(double seconds)
+{
+  if (!(seconds >= 0.0) || !std::isfinite(seconds))
+  {
+    vtkErrorMacro("CostMargin must be finite and >= 0, not " << seconds);
+    return;
+  }
+  auto c = this->Internal->Model.GetCoefficients();
+  c.Margin = seconds;
+  this->Internal->Model.SetCoefficients(c);
+  this->Modified();
+}
+
+double vtkTimeCriticalRenderer::GetCostMargin() const
+{
+  return this->Internal->Model.GetCoefficients().Margin;
+}
+
+//------------------------------------------------------------------------------
+// Statistics
+
+vtkIdType vtkTimeCriticalRenderer::GetObjectTriangles(vtkIdType object) const
+{
+  const auto& in = *this->Internal;
+  return object >= 0 && static_cast<std::size_t>(object) < in.Triangles.size()
+    ? in.Triangles[object]
+    : -1;
+}
+
+double vtkTimeCriticalRenderer::GetObjectResolution(vtkIdType object) const
+{
+  const auto& in = *this->Internal;
+  return object >= 0 && static_cast<std::size_t>(object) < in.Resolution.size()
+    ? in.Resolution[object]
+    : NaN;
+}
+
+double vtkTimeCriticalRenderer::GetObjectPixels(vtkIdType object) const
+{
+  const auto& in = *this->Internal;
+  return object >= 0 && static_cast<std::size_t>(object) < in.Pixels.size() ? in.Pixels[object]
+                                                                             : NaN;
+}
+
+vtkActor* vtkTimeCriticalRenderer::GetObjectActor(vtkIdType object) const
+{
+  const auto& in = *this->Internal;
+  return object >= 0 && static_cast<std::size_t>(object) < in.ObjectActor.size()
+    ? in.Actors[in.ObjectActor[object]].Actor
+    : nullptr;
+}
+
+vtkIdType vtkTimeCriticalRenderer::GetObjectIndex(vtkIdType object) const
+{
+  const auto& in = *this->Internal;
+  return object >= 0 && static_cast<std::size_t>(object) < in.ObjectIndex.size()
+    ? in.ObjectIndex[object]
+    : -1;
+}
+
+//------------------------------------------------------------------------------
+// Frame timing: the window's StartEvent to its EndEvent, which includes the
+// buffer swap where a software rasterizer finishes its work.
+
+void vtkTimeCriticalRenderer::WatchWindow()
+{
+  Internals& in = *this->Internal;
+  if (in.Window == this->RenderWindow)
+  {
+    return;
+  }
+  if (vtkRenderWindow* old = in.Window)
+  {
+    old->RemoveObserver(in.StartTag);
+    old->RemoveObserver(in.EndTag);
+  }
+  in.Window = this->RenderWindow;
+  in.FrameStartValid = false;
+  if (this->RenderWindow)
+  {
+    in.StartTag = this->RenderWindow->AddObserver(
+      vtkCommand::StartEvent, this, &vtkTimeCriticalRenderer::OnWindowStart);
+    in.EndTag = this->RenderWindow->AddObserver(
+      vtkCommand::EndEvent, this, &vtkTimeCriticalRenderer::OnWindowEnd);
+  }
+}
+
+void vtkTimeCriticalRenderer::OnWindowStart()
+{
+  this->Internal->FrameStart = Clock::now();
+  this->Internal->FrameStartValid = true;
+  this->Internal->FramePending = false;
+}
+
+void vtkTimeCriticalRenderer::OnWindowEnd()
+{
+  Internals& in = *this->Internal;
+  if (!in.FramePending || !in.FrameStartValid)
+  {
+    return;
+  }
+  in.FramePending = false;
+  in.FrameStartValid = false;
+  this->MeasuredFrameTime = Seconds(in.FrameStart, Clock::now());
+  if (this->OnlineCalibration)
+  {
+    if (in.Calibrator.Update(in.Features.data(), this->MeasuredFrameTime))
+    {
+      in.StoreCoefficients();
+    }
+  }
+}
+
+//------------------------------------------------------------------------------
+// The frame
+
+void vtkTimeCriticalRenderer::StillRender()
+{
+  if (!this->RenderWindow)
+  {
+    vtkErrorMacro("StillRender() needs a render window");
+    return;
+  }
+  this->Internal->StillRequested = true;
+  this->RenderWindow->Render();
+  this->Internal->StillRequested = false;
+}
+
+bool vtkTimeCriticalRenderer::Calibrate()
+{
+  if (!this->RenderWindow)
+  {
+    vtkErrorMacro("Calibrate() needs a render window");
+    return false;
+  }
+  this->Calibrated = false;
+  this->Internal->CalibrationRequested = true;
+  this->RenderWindow->Render();
+  this->Internal->CalibrationRequested = false;
+  return this->Calibrated;
+}
+
+void vtkTimeCriticalRenderer::DeviceRender()
+{
+  Internals& in = *this->Internal;
+  this->WatchWindow();
+  if (!in.FrameStartValid)
+  {
+    // First frame after attaching to the window, or a render not started by
+    // the window: time from here.
+    in.FrameStart = Clock::now();
+    in.FrameStartValid = true;
+  }
+
+  bool still = in.StillRequested;
+  double target = this->TargetFrameTime;
+  if (this->UseDesiredUpdateRate && this->RenderWindow)
+  {
+    const double rate = this->RenderWindow->GetDesiredUpdateRate();
+    if (!(rate > this->StillUpdateRateThreshold))
+    {
+      still = true;
+    }
+    else
+    {
+      target = 1.0 / rate;
+    }
+  }
+
+  const auto heuristicsStart = Clock::now();
+  this->GatherObjects();
+  const bool adaptive = this->Policy != FULL_RESOLUTION && !still;
+  if (in.CalibrationRequested ||
+    (this->AutomaticCalibration && !this->Calibrated && adaptive && !in.ObjectActor.empty()))
+  {
+    in.CalibrationRequested = false;
+    this->RunCalibration();
+  }
+  this->MeasureObjects();
+  this->HeuristicsTime = Seconds(heuristicsStart, Clock::now());
+
+  const double savedTarget = this->TargetFrameTime;
+  this->TargetFrameTime = target;
+  this->ChooseResolutions(still);
+  this->TargetFrameTime = savedTarget;
+  this->LastRenderWasStill = still;
+
+  this->Superclass::DeviceRender();
+  this->FinishFrame();
+}
+
+void vtkTimeCriticalRenderer::GatherObjects()
+{
+  Internals& in = *this->Internal;
+  in.Actors.clear();
+  in.ObjectActor.clear();
+  in.ObjectIndex.clear();
+  in.Load = timecritical::FrameCostModel::FrameLoad();
+  in.OtherTriangleCount = 0.0;
+
+  int size[2] = { 0, 0 }, origin[2] = { 0, 0 };
+  this->GetTiledSizeAndOrigin(&size[0], &size[1], &origin[0], &origin[1]);
+  in.ViewportWidth = size[0];
+  in.ViewportHeight = size[1];
+
+  for (int p = 0; p < this->PropArrayCount; ++p)
+  {
+    vtkProp* prop = this->PropArray[p];
+    vtkActor* actor = vtkActor::SafeDownCast(prop);
+    auto* mapper =
+      actor ? vtkMultiresolutionPolyDataMapper::SafeDownCast(actor->GetMapper()) : nullptr;
+    if (!mapper)
+    {
+      // An ordinary prop: one draw call, its triangles and pixels are fixed cost.
+      in.Load.DrawCalls += 1.0;
+      vtkMapper* other = actor ? actor->GetMapper() : nullptr;
+      if (auto* poly = other ? vtkPolyData::SafeDownCast(other->GetInputDataObject(0, 0)) : nullptr)
+      {
+        in.OtherTriangleCount += static_cast<double>(poly->GetNumberOfPolys()) +
+          static_cast<double>(poly->GetNumberOfStrips());
+      }
+      continue;
+    }
+    mapper->UpdateObjects();
+    Internals::ActorEntry entry;
+    entry.Actor = actor;
+    entry.Mapper = mapper;
+    entry.First = in.ObjectActor.size();
+    entry.Count = static_cast<std::size_t>(mapper->GetNumberOfObjects());
+    for (std::size_t i = 0; i < entry.Count; ++i)
+    {
+      in.ObjectActor.push_back(in.Actors.size());
+      in.ObjectIndex.push_back(static_cast<vtkIdType>(i));
+    }
+    in.Actors.push_back(entry);
+  }
+  in.Load.OtherTriangles = in.OtherTriangleCount;
+
+  const std::size_t n = in.ObjectActor.size();
+  this->NumberOfObjects = static_cast<vtkIdType>(n);
+  in.Bounds.resize(n);
+  for (auto* v : { &in.MaxTriangles, &in.MaxVertices, &in.Coarsest, &in.Pixels, &in.CenterX,
+         &in.CenterY, &in.Resolution, &in.PreviousResolution, &in.Velocity, &in.Eccentricity,
+         &in.Importances })
+  {
+    v->resize(n);
+  }
+  in.Culled.resize(n);
+  in.Triangles.resize(n);
+  for (const auto& entry : in.Actors)
+  {
+    const double importance = this->GetImportance(entry.Actor);
+    for (std::size_t i = 0; i < entry.Count; ++i)
+    {
+      const std::size_t o = entry.First + i;
+      const vtkIdType index = static_cast<vtkIdType>(i);
+      entry.Mapper->GetObjectBounds(index, in.Bounds[o].data());
+      in.MaxTriangles[o] = static_cast<double>(entry.Mapper->GetObjectNumberOfTriangles(index));
+      in.MaxVertices[o] = static_cast<double>(entry.Mapper->GetObjectNumberOfVertices(index));
+      in.Coarsest[o] = entry.Mapper->GetObjectCoarsestResolution(index);
+      in.Importances[o] = importance;
+    }
+  }
+}
+
+void vtkTimeCriticalRenderer::MeasureObjects()
+{
+  Internals& in = *this->Internal;
+  using timecritical::ViewHeuristics;
+  vtkCamera* camera = this->GetActiveCamera();
+  const double width = in.ViewportWidth, height = in.ViewportHeight;
+  const double aspect = height > 0.0 ? width / height : 1.0;
+  vtkMatrix4x4* viewProjection = camera->GetCompositeProjectionTransformMatrix(aspect, -1, 1);
+
+  // Ordinary props: pixels of their world bounds.
+  in.Load.OtherPixels = 0.0;
+  for (int p = 0; p < this->PropArrayCount; ++p)
+  {
+    vtkActor* actor = vtkActor::SafeDownCast(this->PropArray[p]);
+    if (actor && vtkMultiresolutionPolyDataMapper::SafeDownCast(actor->GetMapper()))
+    {
+      continue;
+    }
+    const double* bounds = this->PropArray[p]->GetBounds();
+    if (bounds && bounds[0] <= bounds[1])
+    {
+      in.Load.OtherPixels +=
+        ViewHeuristics::Project(viewProjection->GetData(), bounds, width, height).Pixels;
+    }
+  }
+
+  const double dt = std::isfinite(this->MeasuredFrameTime) && this->MeasuredFrameTime > 0.0
+    ? this->MeasuredFrameTime
+    : this->TargetFrameTime;
+  const double focusX = this->FocusPoint[0] * width;
+  const double focusY = this->FocusPoint[1] * height;
+  timecritical::DegradationModel::DisplayParameters display;
+  display.ResolutionX = this->DisplayResolution[0];
+  display.ResolutionY = this->DisplayResolution[1];
+  display.SizeX = this->DisplaySize[0];
+  display.SizeY = this->DisplaySize[1];
+  display.ViewingDistance = this->ViewingDistance;
+  in.Degradation.SetDisplay(display);
+  auto config = in.Degradation.GetConfig();
+  const auto defaults = timecritical::DegradationModel::MakeConfig(config.WeightFamily);
+  config.Velocity = this->UseVelocity ? defaults.Velocity
+                                      : timecritical::DegradationModel::VelocityModel::None;
+  config.Eccentricity = this->UseEccentricity
+    ? defaults.Eccentricity
+    : timecritical::DegradationModel::EccentricityModel::None;
+  in.Degradation.SetConfig(config);
+
+  in.TotalPixels = 0.0;
+  vtkIdType culled = 0;
+  vtkNew<vtkMatrix4x4> combined;
+  for (auto& entry : in.Actors)
+  {
+    vtkMatrix4x4::Multiply4x4(viewProjection, entry.Actor->GetMatrix(), combined);
+    std::copy(combined->GetData(), combined->GetData() + 16, entry.Matrix.begin());
+    auto& history = in.History[entry.Mapper];
+    const bool known = history.Resolution.size() == entry.Count;
+    for (std::size_t i = 0; i < entry.Count; ++i)
+    {
+      const std::size_t o = entry.First + i;
+      const auto projection =
+        ViewHeuristics::Project(entry.Matrix.data(), in.Bounds[o].data(), width, height);
+      in.Culled[o] = projection.Culled ? 1 : 0;
+      in.Pixels[o] = projection.Pixels;
+      in.CenterX[o] = projection.CenterX;
+      in.CenterY[o] = projection.CenterY;
+      in.Eccentricity[o] =
+        in.Degradation.PixelsToDegrees(ViewHeuristics::Eccentricity(projection, focusX, focusY));
+      in.Velocity[o] = known
+        ? in.Degradation.PixelsToDegrees(ViewHeuristics::Velocity(
+            history.CenterX[i], history.CenterY[i], projection.CenterX, projection.CenterY, dt))
+        : 0.0;
+      in.PreviousResolution[o] = known ? history.Resolution[i] : NaN;
+      if (projection.Culled)
+      {
+        ++culled;
+      }
+      else
+      {
+        in.TotalPixels += projection.Pixels;
+      }
+    }
+  }
+  this->NumberOfCulledObjects = culled;
+  in.Load.Objects = static_cast<double>(in.ObjectActor.size() - static_cast<std::size_t>(culled));
+}
+
+void vtkTimeCriticalRenderer::ChooseResolutions(bool still)
+{
+  Internals& in = *this->Internal;
+  const std::size_t n = in.ObjectActor.size();
+
+  in.Visible.clear();
+  in.Views.clear();
+  for (std::size_t o = 0; o < n; ++o)
+  {
+    if (in.Culled[o])
+    {
+      continue;
+    }
+    in.Visible.push_back(o);
+    timecritical::DegradationModel::ObjectView view;
+    view.Pixels = in.Pixels[o];
+    view.VelocityDegrees = in.Velocity[o];
+    view.EccentricityDegrees = in.Eccentricity[o];
+    view.Importance = in.Importances[o];
+    view.MaxTriangles = in.MaxTriangles[o];
+    view.MaxVertices = in.MaxVertices[o];
+    in.Views.push_back(view);
+  }
+  const std::size_t m = in.Visible.size();
+  for (auto* v : { &in.Weight, &in.MaxTime, &in.MinResolution, &in.VisiblePixels,
+         &in.VisibleTriangles, &in.Previous, &in.Chosen })
+  {
+    v->resize(m);
+  }
+  bool anyPrevious = false;
+  for (std::size_t k = 0; k < m; ++k)
+  {
+    const std::size_t o = in.Visible[k];
+    in.VisiblePixels[k] = in.Pixels[o];
+    in.VisibleTriangles[k] = in.MaxTriangles[o];
+    in.Previous[k] = in.PreviousResolution[o];
+    anyPrevious = anyPrevious || std::isfinite(in.Previous[k]);
+    in.Coarsest[o] = std::isfinite(in.Coarsest[o]) ? in.Coarsest[o] : 1.0;
+  }
+  in.Degradation.Evaluate(m, in.Views.data(), in.Weight.data());
+  for (std::size_t k = 0; k < m; ++k)
+  {
+    const std::size_t o = in.Visible[k];
+    in.MaxTime[k] = in.Model.MaxTime(in.MaxTriangles[o]);
+    in.MinResolution[k] = in.Model.MinimumResolution(in.MaxTriangles[o], in.Pixels[o], in.Coarsest[o]);
+  }
+
+  // Draw calls: one per multiresolution mapper with a visible object.
+  double mapperCalls = 0.0;
+  for (const auto& entry : in.Actors)
+  {
+    for (std::size_t i = 0; i < entry.Count; ++i)
+    {
+      if (!in.Culled[entry.First + i])
+      {
+        mapperCalls += 1.0;
+        break;
+      }
+    }
+  }
+  timecritical::FrameCostModel::FrameLoad load = in.Load;
+  load.DrawCalls += mapperCalls;
+  const double fixed = in.Model.FixedTime(load, in.TotalPixels);
+
+  timecritical::PolicyInput input;
+  input.Count = m;
+  input.Weight = in.Weight.data();
+  input.MaxTime = in.MaxTime.data();
+  input.MinResolution = in.MinResolution.data();
+  input.Pixels = in.VisiblePixels.data();
+  input.MaxTriangles = in.VisibleTriangles.data();
+  input.Previous = anyPrevious ? in.Previous.data() : nullptr;
+  input.Alpha = in.Degradation.GetAlpha();
+  input.TargetFrameTime = this->TargetFrameTime;
+  input.FixedTime = fixed;
+  input.LastFrameTime = this->MeasuredFrameTime;
+
+  timecritical::ResolutionPolicy* policy =
+    still ? &in.FullResolution : in.GetPolicy(this->Policy);
+  const timecritical::PolicyResult result = policy->Select(input, in.Chosen.data());
+  this->PredictedFrameTime = result.PredictedFrameTime;
+  this->FixedFrameTime = fixed;
+  this->OptimizationTime = result.Seconds;
+  this->OptimizationIterations = result.Iterations;
+  this->OptimizationConverged = result.Converged;
+
+  std::fill(in.Resolution.begin(), in.Resolution.end(), 0.0);
+  for (std::size_t k = 0; k < m; ++k)
+  {
+    in.Resolution[in.Visible[k]] = in.Chosen[k];
+  }
+  for (const auto& entry : in.Actors)
+  {
+    entry.Mapper->SetObjectResolutions(
+      in.Resolution.data() + entry.First, static_cast<vtkIdType>(entry.Count));
+  }
+}
+
+void vtkTimeCriticalRenderer::FinishFrame()
+{
+  Internals& in = *this->Internal;
+  double objectTriangles = 0.0;
+  for (auto& entry : in.Actors)
+  {
+    auto& history = in.History[entry.Mapper];
+    history.Resolution.resize(entry.Count);
+    history.CenterX.resize(entry.Count);
+    history.CenterY.resize(entry.Count);
+    history.Seen = true;
+    for (std::size_t i = 0; i < entry.Count; ++i)
+    {
+      const std::size_t o = entry.First + i;
+      in.Triangles[o] = entry.Mapper->GetObjectRenderedTriangles(static_cast<vtkIdType>(i));
+      objectTriangles += static_cast<double>(in.Triangles[o]);
+      // Culled objects restart from rmin when they come back (NaN = new).
+      history.Resolution[i] = in.Culled[o] ? NaN : in.Resolution[o];
+      history.CenterX[i] = in.CenterX[o];
+      history.CenterY[i] = in.CenterY[o];
+    }
+  }
+  // Forget mappers that were not drawn this frame (they may have been deleted).
+  for (auto it = in.History.begin(); it != in.History.end();)
+  {
+    it = it->second.Seen ? std::next(it) : in.History.erase(it);
+  }
+  for (auto& entry : in.History)
+  {
+    entry.second.Seen = false;
+  }
+
+  this->ObjectTrianglesDrawn = static_cast<vtkIdType>(objectTriangles);
+  this->TrianglesDrawn = static_cast<vtkIdType>(objectTriangles + in.OtherTriangleCount);
+  timecritical::FrameCostModel::FrameLoad load = in.Load;
+  double mapperCalls = 0.0;
+  for (const auto& entry : in.Actors)
+  {
+    mapperCalls += entry.Mapper->GetNumberOfDrawCalls();
+  }
+  load.DrawCalls += mapperCalls;
+  in.Model.GetFeatures(load, objectTriangles, in.TotalPixels, in.Features.data());
+  in.FramePending = true;
+}
+
+//------------------------------------------------------------------------------
+// Start-up calibration: a few renders of the current scene at several
+// resolutions and two zoom factors, each timed to completion (glFinish), then
+// a robust non-negative fit. Runs inside DeviceRender(), so nothing recurses
+// into the window and the user sees only the final frame.
+
+void vtkTimeCriticalRenderer::RunCalibration()
+{
+  Internals& in = *this->Internal;
+  vtkCamera* camera = this->GetActiveCamera();
+  const double savedAngle = camera->GetViewAngle();
+  const double savedScale = camera->GetParallelScale();
+  const double zooms[] = { 1.0, 1.8 };
+  const double triangleTargets[] = { 0.0, 25e3, 60e3, 120e3, 240e3 };
+  constexpr std::size_t MaxSamples = 2 * 5;
+  double x[MaxSamples * FeatureCount];
+  double times[MaxSamples];
+  std::size_t samples = 0;
+  bool warmedUp = false;
+
+  for (double zoom : zooms)
+  {
+    camera->SetViewAngle(savedAngle);
+    camera->SetParallelScale(savedScale);
+    camera->Zoom(zoom);
+    this->MeasureObjects();
+    double visibleTriangles = 0.0;
+    for (std::size_t o = 0; o < in.ObjectActor.size(); ++o)
+    {
+      visibleTriangles += in.Culled[o] ? 0.0 : in.MaxTriangles[o];
+    }
+    if (!(visibleTriangles > 0.0))
+    {
+      continue;
+    }
+    for (double triangles : triangleTargets)
+    {
+      const double r = std::min(1.0, triangles / visibleTriangles);
+      for (std::size_t o = 0; o < in.ObjectActor.size(); ++o)
+      {
+        in.Resolution[o] = in.Culled[o] ? 0.0 : std::max(r, 1e-9);
+      }
+      for (const auto& entry : in.Actors)
+      {
+        entry.Mapper->SetObjectResolutions(
+          in.Resolution.data() + entry.First, static_cast<vtkIdType>(entry.Count));
+      }
+      // The first render uploads the vertex buffers: not a representative frame.
+      for (int repeat = warmedUp ? 1 : 2; repeat > 0; --repeat)
+      {
+        const auto start = Clock::now();
+        this->Superclass::DeviceRender();
+        glFinish();
+        times[samples] = Seconds(start, Clock::now());
+      }
+      warmedUp = true;
+      this->FinishFrame();
+      std::copy(in.Features.begin(), in.Features.end(), x + samples * FeatureCount);
+      ++samples;
+    }
+  }
+  in.FramePending = false;
+  camera->SetViewAngle(savedAngle);
+  camera->SetParallelScale(savedScale);
+  // The fixed per-frame work outside DeviceRender() (swap, window events) is
+  // not in these samples; online refinement adds it within a few frames.
+  if (samples >= 3 && in.Calibrator.Calibrate(x, times, samples))
+  {
+    in.StoreCoefficients();
+    this->Calibrated = true;
+  }
+  else
+  {
+    vtkWarningMacro("Cost model calibration found nothing to measure; keeping the current "
+                    "coefficients");
+  }
+}
+
+void vtkTimeCriticalRenderer::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "TargetFrameTime: " << this->TargetFrameTime << "\n";
+  os << indent << "OptimizationTimeLimit: " << this->OptimizationTimeLimit << "\n";
+  os << indent << "Policy: " << this->GetPolicyAsString() << "\n";
+  os << indent << "DegradationFamily: " << this->DegradationFamily << "\n";
+  os << indent << "UseVelocity: " << this->UseVelocity << "\n";
+  os << indent << "UseEccentricity: " << this->UseEccentricity << "\n";
+  os << indent << "FocusPoint: " << this->FocusPoint[0] << ", " << this->FocusPoint[1] << "\n";
+  os << indent << "DisplayResolution: " << this->DisplayResolution[0] << " x "
+     << this->DisplayResolution[1] << "\n";
+  os << indent << "DisplaySize: " << this->DisplaySize[0] << " x " << this->DisplaySize[1] << "\n";
+  os << indent << "ViewingDistance: " << this->ViewingDistance << "\n";
+  os << indent << "StaticPixelsPerTriangle: " << this->StaticPixelsPerTriangle << "\n";
+  os << indent << "UseDesiredUpdateRate: " << this->UseDesiredUpdateRate << "\n";
+  os << indent << "StillUpdateRateThreshold: " << this->StillUpdateRateThreshold << "\n";
+  os << indent << "AutomaticCalibration: " << this->AutomaticCalibration << "\n";
+  os << indent << "OnlineCalibration: " << this->OnlineCalibration << "\n";
+  os << indent << "Calibrated: " << this->Calibrated << "\n";
+  os << indent << "Cost (frame, draw call, triangle, pixel, margin): " << this->GetFrameCost()
+     << ", " << this->GetDrawCallCost() << ", " << this->GetTriangleCost() << ", "
+     << this->GetPixelCost() << ", " << this->GetCostMargin() << "\n";
+  os << indent << "PredictedFrameTime: " << this->PredictedFrameTime << "\n";
+  os << indent << "MeasuredFrameTime: " << this->MeasuredFrameTime << "\n";
+  os << indent << "OptimizationTime: " << this->OptimizationTime << "\n";
+  os << indent << "OptimizationIterations: " << this->OptimizationIterations << "\n";
+  os << indent << "TrianglesDrawn: " << this->TrianglesDrawn << "\n";
+  os << indent << "NumberOfObjects: " << this->NumberOfObjects << "\n";
+  os << indent << "NumberOfCulledObjects: " << this->NumberOfCulledObjects << "\n";
+}

@@ -1,0 +1,266 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @class   vtkTimeCriticalRenderer
+ * @brief   a renderer that holds a target frame time by choosing per-object resolutions
+ *
+ * Each frame, before VTK's OpenGL pipeline draws, this renderer
+ * 1. finds the objects of every visible actor whose mapper is a
+ *    vtkMultiresolutionPolyDataMapper (each polydata leaf is one object),
+ * 2. culls objects outside the view frustum and measures per object the
+ *    projected pixel coverage of its bounding box, its apparent velocity and
+ *    its eccentricity from the focus point (timecritical::ViewHeuristics),
+ * 3. predicts the frame's cost (timecritical::FrameCostModel, calibrated on
+ *    this machine at start-up and refined from every measured frame) and the
+ *    degradation of each object (timecritical::DegradationModel),
+ * 4. chooses resolutions with the selected policy (Gobbetti & Bouvier's
+ *    active-set optimizer by default) within OptimizationTimeLimit,
+ * 5. hands them to the mappers and lets vtkOpenGLRenderer draw.
+ * Ordinary actors in the same renderer are drawn as usual; their triangles,
+ * pixels and draw calls count in the fixed part of the predicted time.
+ *
+ * Frame times are measured from the render window's StartEvent to its
+ * EndEvent (which includes the buffer swap, when a software rasterizer does
+ * most of its work).
+ *
+ * Still rendering: StillRender() draws one frame with every object at full
+ * resolution. With UseDesiredUpdateRate on, the target follows the render
+ * window's DesiredUpdateRate, which VTK's interactors raise while the user
+ * interacts and drop to their StillUpdateRate at rest: a rate at or below
+ * StillUpdateRateThreshold then draws at full resolution, so the view is
+ * coarse while moving and exact at rest with any VTK interactor.
+ *
+ * Objects are numbered per frame: the visible actors in the renderer's prop
+ * order, then the objects of each mapper in order; GetObjectActor() and
+ * GetObjectIndex() map a number back.
+ *
+ * @sa vtkMultiresolutionPolyDataMapper vtkTOMBuilder
+ */
+#ifndef vtkTimeCriticalRenderer_h
+#define vtkTimeCriticalRenderer_h
+
+#include "TimeCriticalRenderingModule.h" // for export macro
+#include "vtkOpenGLRenderer.h"
+
+#include <memory> // for std::unique_ptr
+
+class vtkActor;
+
+class TIMECRITICALRENDERING_EXPORT vtkTimeCriticalRenderer : public vtkOpenGLRenderer
+{
+public:
+  static vtkTimeCriticalRenderer* New();
+  vtkTypeMacro(vtkTimeCriticalRenderer, vtkOpenGLRenderer);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  enum Policies
+  {
+    ACTIVE_SET = 0,       ///< Gobbetti & Bouvier's predictive optimization (default)
+    FULL_RESOLUTION = 1,  ///< none: every object at full resolution
+    STATIC_THRESHOLD = 2, ///< fixed pixels-per-triangle threshold
+    FEEDBACK = 3,         ///< threshold adapted from the previous frame times
+    GREEDY_LOD = 4        ///< Funkhouser & Séquin's incremental greedy over six LODs
+  };
+
+  enum DegradationFamilies
+  {
+    HITCHNER = 0,              ///< w_i = Npix / Nmaxtri, alpha = 1 (default)
+    FUNKHOUSER = 1,            ///< w_i = Npix / Nmaxtri^2, alpha = 2
+    GOBBETTI_BOUVIER_1999 = 2, ///< w_i = Npix sqrt(Nmaxtri), alpha = -1/2
+    YANG_GU_KANG = 3           ///< Yang et al.'s representation model (alpha = -1/2)
+  };
+
+  ///@{
+  /// Target frame time t_desired in seconds (> 0 and finite; default 0.1).
+  void SetTargetFrameTime(double seconds);
+  vtkGetMacro(TargetFrameTime, double);
+  ///@}
+
+  ///@{
+  /// CPU time limit t_opt of the optimizer in seconds (>= 0; default 0.001).
+  void SetOptimizationTimeLimit(double seconds);
+  vtkGetMacro(OptimizationTimeLimit, double);
+  ///@}
+
+  ///@{
+  /// How resolutions are chosen.
+  void SetPolicy(int policy);
+  vtkGetMacro(Policy, int);
+  void SetPolicyToActiveSet() { this->SetPolicy(ACTIVE_SET); }
+  void SetPolicyToFullResolution() { this->SetPolicy(FULL_RESOLUTION); }
+  void SetPolicyToStaticThreshold() { this->SetPolicy(STATIC_THRESHOLD); }
+  void SetPolicyToFeedback() { this->SetPolicy(FEEDBACK); }
+  void SetPolicyToGreedyLOD() { this->SetPolicy(GREEDY_LOD); }
+  const char* GetPolicyAsString() const;
+  ///@}
+
+  ///@{
+  /// Degradation heuristic (eq. 10 families).
+  void SetDegradationFamily(int family);
+  vtkGetMacro(DegradationFamily, int);
+  ///@}
+
+  ///@{
+  /// Reddy's velocity and eccentricity factors (eq. 7). Default on.
+  vtkSetMacro(UseVelocity, bool);
+  vtkGetMacro(UseVelocity, bool);
+  vtkBooleanMacro(UseVelocity, bool);
+  vtkSetMacro(UseEccentricity, bool);
+  vtkGetMacro(UseEccentricity, bool);
+  vtkBooleanMacro(UseEccentricity, bool);
+  ///@}
+
+  ///@{
+  /**
+   * Focus point for eccentricity, in normalized viewport coordinates
+   * ([0,1]^2, (0.5, 0.5) = screen centre, the default).
+   */
+  vtkSetVector2Macro(FocusPoint, double);
+  vtkGetVector2Macro(FocusPoint, double);
+  ///@}
+
+  ///@{
+  /// Physical display for eq. 8: resolution (pixels), size and viewing distance (metres).
+  vtkSetVector2Macro(DisplayResolution, double);
+  vtkGetVector2Macro(DisplayResolution, double);
+  vtkSetVector2Macro(DisplaySize, double);
+  vtkGetVector2Macro(DisplaySize, double);
+  vtkSetMacro(ViewingDistance, double);
+  vtkGetMacro(ViewingDistance, double);
+  ///@}
+
+  ///@{
+  /// Pixels per triangle of the static policy (and the feedback policy's start). Default 8.
+  void SetStaticPixelsPerTriangle(double k);
+  vtkGetMacro(StaticPixelsPerTriangle, double);
+  ///@}
+
+  /// User importance w_s of an actor's objects (default 1, >= 0).
+  void SetImportance(vtkActor* actor, double importance);
+  double GetImportance(vtkActor* actor) const;
+
+  ///@{
+  /// Target from the render window's DesiredUpdateRate (see class comment). Default off.
+  vtkSetMacro(UseDesiredUpdateRate, bool);
+  vtkGetMacro(UseDesiredUpdateRate, bool);
+  vtkBooleanMacro(UseDesiredUpdateRate, bool);
+  vtkSetMacro(StillUpdateRateThreshold, double);
+  vtkGetMacro(StillUpdateRateThreshold, double);
+  ///@}
+
+  /// Render the window once with every object at full resolution.
+  void StillRender();
+
+  ///@{
+  /**
+   * Cost model calibration. AutomaticCalibration (default on) runs
+   * Calibrate() before the first adaptive frame; OnlineCalibration (default
+   * on) refines the coefficients from every measured frame. Turn both off and
+   * set the coefficients for deterministic resolutions (tests).
+   */
+  vtkSetMacro(AutomaticCalibration, bool);
+  vtkGetMacro(AutomaticCalibration, bool);
+  vtkBooleanMacro(AutomaticCalibration, bool);
+  vtkSetMacro(OnlineCalibration, bool);
+  vtkGetMacro(OnlineCalibration, bool);
+  vtkBooleanMacro(OnlineCalibration, bool);
+  ///@}
+
+  /**
+   * Start-up calibration: renders a few frames of the current scene at
+   * several resolutions and zoom factors, times them, and fits the cost
+   * model. Needs a render window. Returns false (and keeps the previous
+   * coefficients) when the scene has nothing to measure.
+   */
+  bool Calibrate();
+  vtkGetMacro(Calibrated, bool);
+
+  ///@{
+  /**
+   * Cost coefficients (seconds): per frame, per draw call, per triangle and
+   * per covered pixel (bounding-box pixels of the objects), plus a safety
+   * margin added to the fixed time.
+   */
+  void SetCostCoefficients(double frame, double drawCall, double triangle, double pixel);
+  double GetFrameCost() const;
+  double GetDrawCallCost() const;
+  double GetTriangleCost() const;
+  double GetPixelCost() const;
+  void SetCostMargin(double seconds);
+  double GetCostMargin() const;
+  ///@}
+
+  ///@{
+  /// Statistics of the last frame.
+  vtkGetMacro(PredictedFrameTime, double);
+  vtkGetMacro(FixedFrameTime, double);       ///< t_fixed of the prediction
+  vtkGetMacro(MeasuredFrameTime, double);    ///< last completed frame (NaN before any)
+  vtkGetMacro(OptimizationTime, double);     ///< seconds spent in the policy
+  vtkGetMacro(HeuristicsTime, double);       ///< seconds spent culling and measuring
+  vtkGetMacro(OptimizationIterations, int);
+  vtkGetMacro(OptimizationConverged, bool);
+  vtkGetMacro(TrianglesDrawn, vtkIdType);    ///< all triangles (objects and ordinary actors)
+  vtkGetMacro(ObjectTrianglesDrawn, vtkIdType); ///< triangles of the multiresolution objects
+  vtkGetMacro(NumberOfObjects, vtkIdType);
+  vtkGetMacro(NumberOfCulledObjects, vtkIdType);
+  vtkGetMacro(LastRenderWasStill, bool);
+  vtkIdType GetObjectTriangles(vtkIdType object) const;  ///< -1 for a bad index
+  double GetObjectResolution(vtkIdType object) const;     ///< 0 when culled, NaN for a bad index
+  double GetObjectPixels(vtkIdType object) const;         ///< projected coverage
+  vtkActor* GetObjectActor(vtkIdType object) const;
+  vtkIdType GetObjectIndex(vtkIdType object) const;       ///< index within the actor's mapper
+  ///@}
+
+  void DeviceRender() override;
+
+protected:
+  vtkTimeCriticalRenderer();
+  ~vtkTimeCriticalRenderer() override;
+
+  double TargetFrameTime = 0.1;
+  double OptimizationTimeLimit = 0.001;
+  int Policy = ACTIVE_SET;
+  int DegradationFamily = HITCHNER;
+  bool UseVelocity = true;
+  bool UseEccentricity = true;
+  double FocusPoint[2] = { 0.5, 0.5 };
+  double DisplayResolution[2] = { 1920.0, 1080.0 };
+  double DisplaySize[2] = { 0.531, 0.299 };
+  double ViewingDistance = 0.6;
+  double StaticPixelsPerTriangle = 8.0;
+  bool UseDesiredUpdateRate = false;
+  double StillUpdateRateThreshold = 0.001;
+  bool AutomaticCalibration = true;
+  bool OnlineCalibration = true;
+  bool Calibrated = false;
+
+  double PredictedFrameTime = 0.0;
+  double FixedFrameTime = 0.0;
+  double MeasuredFrameTime;
+  double OptimizationTime = 0.0;
+  double HeuristicsTime = 0.0;
+  int OptimizationIterations = 0;
+  bool OptimizationConverged = true;
+  vtkIdType TrianglesDrawn = 0;
+  vtkIdType ObjectTrianglesDrawn = 0;
+  vtkIdType NumberOfObjects = 0;
+  vtkIdType NumberOfCulledObjects = 0;
+  bool LastRenderWasStill = false;
+
+private:
+  vtkTimeCriticalRenderer(const vtkTimeCriticalRenderer&) = delete;
+  void operator=(const vtkTimeCriticalRenderer&) = delete;
+
+  void WatchWindow();
+  void OnWindowStart();
+  void OnWindowEnd();
+  void GatherObjects();
+  void MeasureObjects();
+  void ChooseResolutions(bool still);
+  void RunCalibration();
+  void FinishFrame();
+
+  struct Internals;
+  std::unique_ptr<Internals> Internal;
+};
+
+#endif

@@ -1,0 +1,1881 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * WalkthroughBenchmark (W1): Gobbetti & Bouvier's walkthrough of 529 cows
+ * (section 7.2.2, Fig. 8) with every resolution policy on the same camera path.
+ *
+ * Scene: replicas of the cow (one TOM, transformed copies) on a jittered grid
+ * in the y = 0 plane, one actor with a vtkMultiresolutionPolyDataMapper in a
+ * vtkTimeCriticalRenderer, 512x512. Path: A (all objects visible) -> B (close
+ * to one object, few others) -> sudden turn to a view full of objects ->
+ * backing away to C. Policies: active set ("timecritical"), none (full
+ * resolution, also the reference images), static threshold, feedback,
+ * Funkhouser's greedy, and VTK's own vtkLODProp3D (one prop per object with
+ * six shared LOD meshes, DesiredUpdateRate = 1 / target).
+ *
+ * Per frame: wall-clock frame time around Render() (image capture excluded),
+ * the renderer's own measurement, predicted and optimizer time, iterations,
+ * triangles, culled objects, and PSNR against the 'none' frame of the same
+ * camera (OpenImageIO). Prints one table and the goals of TimeCritical,
+ * writes walkthrough.json, key frames as PNG and (with matplotlib) the plot.
+ * Missed goals are reported, not failed: the exit status is nonzero only for
+ * errors.
+ *
+ *   WalkthroughBenchmark [--quick] [--frames N] [--objects N] [--policies LIST]
+ *                        [--target S] [--output DIR] [--json FILE] [--data DIR]
+ */
+#include "TestMeshIO.h"
+#include "vtkMultiresolutionPolyDataMapper.h"
+#include "vtkTOMBuilder.h"
+#include "vtkTOMFieldData.h"
+#include "vtkTimeCriticalRenderer.h"
+
+#include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imagebufalgo.h>
+
+#include <vtkActor.h>
+#include <vtkCamera.h>
+#include <vtkCellArray.h>
+#include <vtkDataArray.h>
+#include <vtkFloatArray.h>
+#include <vtkImageData.h>
+#include <vtkLODProp3D.h>
+#include <vtkMatrix4x4.h>
+#include <vtkMultiBlockDataSet.h>
+#include <vtkNew.h>
+#include <vtkObjectFactory.h>
+#include <vtkPNGWriter.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+#include <vtkPolyDataMapper.h>
+#include <vtkPolyDataNormals.h>
+#include <vtkProperty.h>
+#include <vtkQuadricDecimation.h>
+#include <vtkRenderWindow.h>
+#include <vtkRenderer.h>
+#include <vtkSmartPointer.h>
+#include <vtkTransform.h>
+#include <vtkUnsignedCharArray.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <exception>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <iterator>
+#include <limits>
+#include <random>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#ifndef TIMECRITICAL_WALKTHROUGH_PLOT_SCRIPT
+#define TIMECRITICAL_WALKTHROUGH_PLOT_SCRIPT ""
+#endif
+
+namespace
+{
+using Clock = std::chrono::steady_clock;
+constexpr double NaN = std::numeric_limits<double>::quiet_NaN();
+/// Identical images have infinite PSNR; a finite cap keeps means meaningful.
+constexpr double PSNRCap = 99.0;
+constexpr int WindowSize = 512;
+constexpr double ViewAngle = 40.0;
+
+double Seconds(Clock::time_point start, Clock::time_point end)
+{
+  return std::chrono::duration<double>(end - start).count();
+}
+
+//------------------------------------------------------------------------------
+// Policies
+
+enum class PolicyKind
+{
+  None,
+  TimeCritical,
+  Static,
+  Feedback,
+  Greedy,
+  LODProp3D
+};
+
+struct PolicyInfo
+{
+  PolicyKind Kind;
+  const char* Name;  ///< command line and JSON
+  const char* Label; ///< table and plot
+  int RendererPolicy; ///< vtkTimeCriticalRenderer::Policies, -1 for vtkLODProp3D
+};
+
+// 'none' first: its frames are the reference images of all the others.
+const PolicyInfo AllPolicies[] = {
+  { PolicyKind::None, "none", "none (full res.)", vtkTimeCriticalRenderer::FULL_RESOLUTION },
+  { PolicyKind::TimeCritical, "timecritical", "TimeCritical", vtkTimeCriticalRenderer::ACTIVE_SET },
+  { PolicyKind::Static, "static", "static threshold", vtkTimeCriticalRenderer::STATIC_THRESHOLD },
+  { PolicyKind::Feedback, "feedback", "feedback", vtkTimeCriticalRenderer::FEEDBACK },
+  { PolicyKind::Greedy, "greedy", "Funkhouser greedy", vtkTimeCriticalRenderer::GREEDY_LOD },
+  { PolicyKind::LODProp3D, "lodprop3d", "vtkLODProp3D", -1 },
+};
+
+const PolicyInfo* FindPolicy(const std::string& name)
+{
+  std::string key = name;
+  if (key == "activeset" || key == "active-set" || key == "active_set" || key == "tc")
+  {
+    key = "timecritical";
+  }
+  else if (key == "full" || key == "full-resolution" || key == "reference")
+  {
+    key = "none";
+  }
+  else if (key == "lod" || key == "vtklodprop3d")
+  {
+    key = "lodprop3d";
+  }
+  for (const PolicyInfo& policy : AllPolicies)
+  {
+    if (key == policy.Name)
+    {
+      return &policy;
+    }
+  }
+  return nullptr;
+}
+
+//------------------------------------------------------------------------------
+// Settings
+
+struct Settings
+{
+  bool Quick = false;
+  int Frames = 240;
+  int Objects = 529;
+  double Target = 0.1;
+  int WarmupFrames = 3;
+  /// vtkLODProp3D tries every never-rendered LOD once before it selects by time.
+  int LODWarmupFrames = 8;
+  unsigned Seed = 20001;
+  std::string Output = "walkthrough-output";
+  std::string Json; ///< default: Output/walkthrough.json
+  std::string DataDirectory = TIMECRITICAL_SHARED_DATA_DIR;
+  std::vector<const PolicyInfo*> Policies;
+  bool Plot = true;
+};
+
+void PrintUsage()
+{
+  std::cout
+    << "WalkthroughBenchmark: the W1 walkthrough (Gobbetti & Bouvier section 7.2, Fig. 8)\n"
+       "  --frames N      frames of the camera path (default 240, at least 10)\n"
+       "  --objects N     cow replicas (default 529 = 23x23)\n"
+       "  --policies L    comma list of none,timecritical,static,feedback,greedy,lodprop3d\n"
+       "                  (default all; 'none' gives the reference images for PSNR)\n"
+       "  --target S      target frame time in seconds (default 0.1)\n"
+       "  --warmup N      untimed frames at the first camera before each policy (default 3)\n"
+       "  --quick         64 objects, 30 frames (smoke test)\n"
+       "  --output DIR    output folder (default ./walkthrough-output)\n"
+       "  --json FILE     JSON file (default DIR/walkthrough.json)\n"
+       "  --data DIR      folder with cow.obj (default " TIMECRITICAL_SHARED_DATA_DIR ")\n"
+       "  --seed N        seed of the object placement (default 20001)\n"
+       "  --no-plot       do not run scripts/plot_walkthrough.py\n";
+}
+
+Settings ParseArguments(int argc, char* argv[])
+{
+  Settings settings;
+  bool framesSet = false;
+  bool objectsSet = false;
+  std::string policies;
+  for (int i = 1; i < argc; ++i)
+  {
+    const std::string arg = argv[i];
+    const auto value = [&]() -> std::string {
+      if (i + 1 >= argc)
+      {
+        throw std::runtime_error("missing value after " + arg);
+      }
+      return argv[++i];
+    };
+    const auto integer = [&](int minimum) {
+      const std::string text = value();
+      char* end = nullptr;
+      const long parsed = std::strtol(text.c_str(), &end, 10);
+      if (end == text.c_str() || *end != '\0' || parsed < minimum || parsed > 1000000)
+      {
+        throw std::runtime_error("bad value for " + arg + ": " + text);
+      }
+      return static_cast<int>(parsed);
+    };
+    if (arg == "--help" || arg == "-h")
+    {
+      PrintUsage();
+      std::exit(0);
+    }
+    else if (arg == "--quick")
+    {
+      settings.Quick = true;
+    }
+    else if (arg == "--frames")
+    {
+      settings.Frames = integer(10);
+      framesSet = true;
+    }
+    else if (arg == "--objects")
+    {
+      settings.Objects = integer(1);
+      objectsSet = true;
+    }
+    else if (arg == "--warmup")
+    {
+      settings.WarmupFrames = integer(0);
+    }
+    else if (arg == "--seed")
+    {
+      settings.Seed = static_cast<unsigned>(integer(0));
+    }
+    else if (arg == "--target")
+    {
+      const std::string text = value();
+      char* end = nullptr;
+      settings.Target = std::strtod(text.c_str(), &end);
+      if (end == text.c_str() || *end != '\0' || !(settings.Target > 0.0) ||
+        !std::isfinite(settings.Target))
+      {
+        throw std::runtime_error("bad value for --target: " + text);
+      }
+    }
+    else if (arg == "--policies")
+    {
+      policies = value();
+    }
+    else if (arg == "--output")
+    {
+      settings.Output = value();
+    }
+    else if (arg == "--json")
+    {
+      settings.Json = value();
+    }
+    else if (arg == "--data")
+    {
+      settings.DataDirectory = value();
+    }
+    else if (arg == "--no-plot")
+    {
+      settings.Plot = false;
+    }
+    else
+    {
+      throw std::runtime_error("unknown option " + arg + " (see --help)");
+    }
+  }
+  if (settings.Quick)
+  {
+    settings.Frames = framesSet ? settings.Frames : 30;
+    settings.Objects = objectsSet ? settings.Objects : 64;
+  }
+  if (settings.Json.empty())
+  {
+    settings.Json = (std::filesystem::path(settings.Output) / "walkthrough.json").string();
+  }
+  // Run in the canonical order whatever the order given, so that the
+  // reference exists before any policy is compared with it.
+  std::vector<bool> wanted(std::size(AllPolicies), policies.empty());
+  std::stringstream list(policies);
+  for (std::string name; std::getline(list, name, ',');)
+  {
+    if (name.empty())
+    {
+      continue;
+    }
+    const PolicyInfo* policy = FindPolicy(name);
+    if (!policy)
+    {
+      throw std::runtime_error("unknown policy '" + name + "' (see --help)");
+    }
+    wanted[static_cast<size_t>(policy - AllPolicies)] = true;
+  }
+  for (size_t i = 0; i < std::size(AllPolicies); ++i)
+  {
+    if (wanted[i])
+    {
+      settings.Policies.push_back(&AllPolicies[i]);
+    }
+  }
+  if (settings.Policies.empty())
+  {
+    throw std::runtime_error("no policy selected");
+  }
+  return settings;
+}
+
+//------------------------------------------------------------------------------
+// Small vector algebra for the camera path
+
+struct Vec3
+{
+  double X = 0.0, Y = 0.0, Z = 0.0;
+};
+Vec3 operator+(const Vec3& a, const Vec3& b)
+{
+  return { a.X + b.X, a.Y + b.Y, a.Z + b.Z };
+}
+Vec3 operator-(const Vec3& a, const Vec3& b)
+{
+  return { a.X - b.X, a.Y - b.Y, a.Z - b.Z };
+}
+Vec3 operator*(const Vec3& a, double s)
+{
+  return { a.X * s, a.Y * s, a.Z * s };
+}
+Vec3 Lerp(const Vec3& a, const Vec3& b, double t)
+{
+  return a + (b - a) * t;
+}
+Vec3 Normalized(const Vec3& a)
+{
+  const double length = std::sqrt(a.X * a.X + a.Y * a.Y + a.Z * a.Z);
+  return length > 0.0 ? a * (1.0 / length) : a;
+}
+double SmoothStep(double t)
+{
+  t = std::min(std::max(t, 0.0), 1.0);
+  return t * t * (3.0 - 2.0 * t);
+}
+
+//------------------------------------------------------------------------------
+// The object: the cow (or a substitute), its TOM and its LOD meshes
+
+/// Portable uniform numbers: std::mt19937's output is fixed by the standard,
+/// std::uniform_real_distribution's is not.
+class Random
+{
+public:
+  explicit Random(unsigned seed)
+    : Engine(seed)
+  {
+  }
+  double Uniform(double low, double high)
+  {
+    const double u = static_cast<double>(this->Engine() >> 8) * (1.0 / 16777216.0);
+    return low + (high - low) * u;
+  }
+
+private:
+  std::mt19937 Engine;
+};
+
+vtkSmartPointer<vtkPolyData> ToPolyData(const timecritical::testing::TriangleMesh& mesh)
+{
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  points->SetNumberOfPoints(static_cast<vtkIdType>(mesh.NumberOfPoints()));
+  for (size_t i = 0; i < mesh.NumberOfPoints(); ++i)
+  {
+    points->SetPoint(static_cast<vtkIdType>(i), &mesh.Points[3 * i]);
+  }
+  vtkNew<vtkCellArray> polys;
+  for (size_t t = 0; t < mesh.NumberOfTriangles(); ++t)
+  {
+    const vtkIdType ids[3] = { mesh.Triangles[3 * t], mesh.Triangles[3 * t + 1],
+      mesh.Triangles[3 * t + 2] };
+    polys->InsertNextCell(3, ids);
+  }
+  auto data = vtkSmartPointer<vtkPolyData>::New();
+  data->SetPoints(points);
+  data->SetPolys(polys);
+  return data;
+}
+
+/// A cow-sized stand-in: an ellipsoid with bumps, 2 * 43 * 68 = 5,848 triangles.
+timecritical::testing::TriangleMesh MakeSubstituteCow()
+{
+  auto mesh = timecritical::testing::MakeUVSphere(44, 68);
+  for (size_t i = 0; i < mesh.NumberOfPoints(); ++i)
+  {
+    double* p = &mesh.Points[3 * i];
+    const double bump = 1.0 + 0.08 * std::sin(7.0 * p[0]) * std::sin(5.0 * p[1]) * std::cos(6.0 * p[2]);
+    // The cow's extents: about 10.4 long (x), 6.4 high (y), 3.4 wide (z).
+    p[0] *= 5.2 * bump;
+    p[1] *= 3.2 * bump;
+    p[2] *= 1.7 * bump;
+  }
+  return mesh;
+}
+
+struct ObjectMesh
+{
+  std::string Source;      ///< file read, or a description of the substitute
+  bool Substitute = false; ///< cow.obj was not found
+  vtkSmartPointer<vtkPolyData> TOM;
+  double BuildSeconds = 0.0;
+  vtkIdType Triangles = 0;
+  vtkIdType BaseTriangles = 0;
+  /// vtkLODProp3D levels: the TOM mesh itself, then quadric decimations.
+  std::vector<vtkSmartPointer<vtkPolyData>> LODs;
+  std::vector<double> LODFractions;
+  double LODSeconds = 0.0;
+};
+
+vtkSmartPointer<vtkPolyData> WithNormals(vtkPolyData* input)
+{
+  // Splitting off: one normal per vertex, so shading is smooth and the
+  // vertices the TOM orders are the mesh's own.
+  vtkNew<vtkPolyDataNormals> normals;
+  normals->SetInputData(input);
+  normals->SplittingOff();
+  normals->ConsistencyOn();
+  normals->ComputePointNormalsOn();
+  normals->ComputeCellNormalsOff();
+  normals->Update();
+  vtkSmartPointer<vtkPolyData> out = normals->GetOutput();
+  return out;
+}
+
+ObjectMesh MakeObject(const Settings& settings)
+{
+  ObjectMesh object;
+  const std::filesystem::path cow = std::filesystem::path(settings.DataDirectory) / "cow.obj";
+  timecritical::testing::TriangleMesh mesh;
+  if (std::filesystem::is_regular_file(cow))
+  {
+    object.Source = cow.string();
+    mesh = timecritical::testing::RemoveUnusedPoints(
+      timecritical::testing::WeldPoints(timecritical::testing::LoadMesh(cow.string())));
+  }
+  else
+  {
+    object.Substitute = true;
+    object.Source = "substitute: bumpy ellipsoid of 5,848 triangles (" + cow.string() + " not found)";
+    std::cerr << "WARNING: " << cow.string()
+              << " not found: the scene uses a cow-sized substitute (a bumpy ellipsoid)\n";
+    mesh = MakeSubstituteCow();
+  }
+
+  vtkNew<vtkTOMBuilder> builder;
+  builder->SetInputData(WithNormals(ToPolyData(mesh)));
+  builder->Update();
+  object.TOM = builder->GetOutput();
+  object.BuildSeconds = builder->GetBuildTime();
+  vtkNew<vtkTOMFieldData> tom;
+  if (!tom->Read(object.TOM))
+  {
+    throw std::runtime_error(std::string("vtkTOMBuilder output is not a valid TOM: ") +
+      tom->GetErrorMessage());
+  }
+  object.Triangles = tom->GetNumberOfTriangles();
+  object.BaseTriangles = tom->GetBaseTriangleCount();
+  if (!object.TOM->GetPointData()->GetNormals())
+  {
+    throw std::runtime_error("the TOM lost the point normals");
+  }
+
+  // vtkLODProp3D levels, computed once and shared by all props: the full
+  // mesh is the TOM's own geometry and normals (what the other policies draw
+  // at full resolution), the others are the paper's 50, 25, 12, 6, 3 %.
+  const Clock::time_point start = Clock::now();
+  auto full = vtkSmartPointer<vtkPolyData>::New();
+  full->SetPoints(object.TOM->GetPoints());
+  full->SetPolys(object.TOM->GetPolys());
+  full->GetPointData()->SetNormals(object.TOM->GetPointData()->GetNormals());
+  object.LODs.push_back(full);
+  object.LODFractions.push_back(1.0);
+  auto plain = vtkSmartPointer<vtkPolyData>::New();
+  plain->SetPoints(object.TOM->GetPoints());
+  plain->SetPolys(object.TOM->GetPolys());
+  for (double fraction : { 0.5, 0.25, 0.12, 0.06, 0.03 })
+  {
+    vtkNew<vtkQuadricDecimation> decimate;
+    decimate->SetInputData(plain);
+    decimate->SetTargetReduction(1.0 - fraction);
+    decimate->VolumePreservationOn();
+    decimate->Update();
+    object.LODs.push_back(WithNormals(decimate->GetOutput()));
+    object.LODFractions.push_back(fraction);
+  }
+  object.LODSeconds = Seconds(start, Clock::now());
+  return object;
+}
+
+//------------------------------------------------------------------------------
+// Scene layout and copies
+
+struct Placement
+{
+  double X = 0.0, Z = 0.0, Angle = 0.0; ///< position on the plane, rotation about +y (degrees)
+  std::array<unsigned char, 3> Color{};
+  vtkSmartPointer<vtkTransform> Transform;
+};
+
+struct Scene
+{
+  std::vector<Placement> Objects;
+  int GridSide = 0;
+  double Spacing = 0.0;
+  double Jitter = 0.0;
+  double Extent = 0.0;    ///< the herd covers [0, Extent]^2 in x and z
+  double Radius = 0.0;    ///< footprint radius of one object about its centre
+  double Height = 0.0;    ///< object height (feet at y = 0)
+  int Focus = 0;          ///< the object B looks at
+  double Bounds[6] = { 0, 0, 0, 0, 0, 0 };
+  vtkIdType Triangles = 0;
+  int OverlapChecks = 0;
+};
+
+std::array<unsigned char, 3> RandomColor(Random& random)
+{
+  // Pleasant, distinct colours: random hue, moderate saturation, bright value.
+  const double h = random.Uniform(0.0, 6.0);
+  const double s = random.Uniform(0.3, 0.65);
+  const double v = random.Uniform(0.7, 0.95);
+  const int sector = static_cast<int>(h) % 6;
+  const double f = h - std::floor(h);
+  const double p = v * (1 - s), q = v * (1 - s * f), t = v * (1 - s * (1 - f));
+  double rgb[3];
+  switch (sector)
+  {
+    case 0: rgb[0] = v; rgb[1] = t; rgb[2] = p; break;
+    case 1: rgb[0] = q; rgb[1] = v; rgb[2] = p; break;
+    case 2: rgb[0] = p; rgb[1] = v; rgb[2] = t; break;
+    case 3: rgb[0] = p; rgb[1] = q; rgb[2] = v; break;
+    case 4: rgb[0] = t; rgb[1] = p; rgb[2] = v; break;
+    default: rgb[0] = v; rgb[1] = p; rgb[2] = q; break;
+  }
+  std::array<unsigned char, 3> color{};
+  for (int c = 0; c < 3; ++c)
+  {
+    color[c] = static_cast<unsigned char>(std::lround(255.0 * rgb[c]));
+  }
+  return color;
+}
+
+Scene PlaceObjects(const Settings& settings, vtkPolyData* tom, vtkIdType trianglesPerObject)
+{
+  Scene scene;
+  double b[6];
+  tom->GetBounds(b);
+  const double cx = 0.5 * (b[0] + b[1]), cz = 0.5 * (b[4] + b[5]);
+  for (vtkIdType i = 0; i < tom->GetNumberOfPoints(); ++i)
+  {
+    double p[3];
+    tom->GetPoint(i, p);
+    scene.Radius = std::max(scene.Radius, std::hypot(p[0] - cx, p[2] - cz));
+  }
+  scene.Height = b[3] - b[2];
+  // Cells leave 3 units (~0.3 cow lengths) between footprints; the jitter uses
+  // 90% of that gap, so no two footprint circles can touch whatever the rotation.
+  scene.GridSide = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(settings.Objects))));
+  scene.Spacing = 2.0 * scene.Radius + 3.0;
+  scene.Jitter = 0.45 * (scene.Spacing - 2.0 * scene.Radius);
+  scene.Extent = scene.GridSide * scene.Spacing;
+
+  Random random(settings.Seed);
+  for (int n = 0; n < settings.Objects; ++n)
+  {
+    Placement place;
+    const int i = n % scene.GridSide, j = n / scene.GridSide;
+    place.X = (i + 0.5) * scene.Spacing + random.Uniform(-scene.Jitter, scene.Jitter);
+    place.Z = (j + 0.5) * scene.Spacing + random.Uniform(-scene.Jitter, scene.Jitter);
+    place.Angle = random.Uniform(0.0, 360.0);
+    place.Color = RandomColor(random);
+    place.Transform = vtkSmartPointer<vtkTransform>::New();
+    place.Transform->PostMultiply();
+    place.Transform->Translate(-cx, -b[2], -cz); // footprint centre to the origin, feet on y = 0
+    place.Transform->RotateY(place.Angle);
+    place.Transform->Translate(place.X, 0.0, place.Z);
+    place.Transform->Update();
+    scene.Objects.push_back(place);
+  }
+  // Verify "no overlaps" rather than trust the construction.
+  for (size_t m = 0; m < scene.Objects.size(); ++m)
+  {
+    for (size_t n = m + 1; n < scene.Objects.size(); ++n)
+    {
+      ++scene.OverlapChecks;
+      const double d = std::hypot(
+        scene.Objects[m].X - scene.Objects[n].X, scene.Objects[m].Z - scene.Objects[n].Z);
+      if (d < 2.0 * scene.Radius)
+      {
+        throw std::runtime_error("objects " + std::to_string(m) + " and " + std::to_string(n) +
+          " overlap");
+      }
+    }
+  }
+  // B focuses on the object nearest to a fifth of the diagonal, so that the
+  // sudden turn at B looks across most of the herd.
+  double best = std::numeric_limits<double>::infinity();
+  for (size_t n = 0; n < scene.Objects.size(); ++n)
+  {
+    const double d = std::hypot(
+      scene.Objects[n].X - 0.196 * scene.Extent, scene.Objects[n].Z - 0.196 * scene.Extent);
+    if (d < best)
+    {
+      best = d;
+      scene.Focus = static_cast<int>(n);
+    }
+  }
+  scene.Bounds[0] = scene.Bounds[4] = -scene.Radius;
+  scene.Bounds[1] = scene.Bounds[5] = scene.Extent + scene.Radius;
+  scene.Bounds[2] = 0.0;
+  scene.Bounds[3] = scene.Height;
+  scene.Triangles = trianglesPerObject * static_cast<vtkIdType>(scene.Objects.size());
+  return scene;
+}
+
+/// A transformed copy of the TOM with a colour per vertex. Points and normals
+/// are transformed in place in a deep copy, which keeps the TOM arrays (point
+/// and field data) untouched; the copy is then checked to still be a TOM.
+vtkSmartPointer<vtkPolyData> MakeCopy(vtkPolyData* tom, const Placement& place)
+{
+  auto copy = vtkSmartPointer<vtkPolyData>::New();
+  copy->DeepCopy(tom);
+  vtkPoints* points = copy->GetPoints();
+  vtkDataArray* normals = copy->GetPointData()->GetNormals();
+  for (vtkIdType i = 0; i < copy->GetNumberOfPoints(); ++i)
+  {
+    double p[3], n[3];
+    points->GetPoint(i, p);
+    place.Transform->TransformPoint(p, p);
+    points->SetPoint(i, p);
+    normals->GetTuple(i, n);
+    place.Transform->TransformNormal(n, n);
+    normals->SetTuple(i, n);
+  }
+  points->Modified();
+  normals->Modified();
+  vtkNew<vtkUnsignedCharArray> colors;
+  colors->SetName("Colors");
+  colors->SetNumberOfComponents(3);
+  colors->SetNumberOfTuples(copy->GetNumberOfPoints());
+  for (vtkIdType i = 0; i < copy->GetNumberOfPoints(); ++i)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      colors->SetTypedComponent(i, c, place.Color[c]);
+    }
+  }
+  copy->GetPointData()->SetScalars(colors);
+  vtkNew<vtkTOMFieldData> check;
+  if (!check->Read(copy))
+  {
+    throw std::runtime_error(std::string("a transformed copy is not a valid TOM: ") +
+      check->GetErrorMessage());
+  }
+  return copy;
+}
+
+//------------------------------------------------------------------------------
+// Camera path (section 7.2.2): a pure function of the frame index.
+
+struct Pose
+{
+  Vec3 Position, FocalPoint;
+};
+
+class CameraPath
+{
+public:
+  CameraPath(const Scene& scene, int frames)
+    : Frames(frames)
+  {
+    const double L = scene.Extent;
+    const double r = scene.Radius;
+    this->Center = { 0.5 * L, 0.0, 0.5 * L };
+    const Placement& focus = scene.Objects[static_cast<size_t>(scene.Focus)];
+    this->Target = { focus.X, 0.5 * scene.Height, focus.Z };
+    // A: outside the herd beyond one corner and high up: the whole herd in view.
+    this->A = this->Center + Vec3{ 1.115 * L, 0.932 * L, -1.121 * L };
+    // B: about four footprint radii from the focus object on A's side, above
+    // it: the object fills half the view, a few neighbours the background.
+    const Vec3 towardA = Normalized(Vec3{ this->A.X - this->Target.X, 0.0, this->A.Z - this->Target.Z });
+    this->B = this->Target + towardA * (4.4 * r) + Vec3{ 0.0, 3.3 * r, 0.0 };
+    // The sudden turn: from looking down at the object to looking along the
+    // herd's diagonal, slightly downward: near objects large, hundreds behind.
+    this->TurnDirection = Normalized(Vec3{ 1.0, -0.12, 1.0 });
+    this->TurnFocus = this->B + this->TurnDirection * (0.31 * L);
+    // C: backed away along the diagonal, outside the herd and up again.
+    const Vec3 back = Normalized(Vec3{ 1.0, 0.0, 1.0 });
+    this->C = Vec3{ this->B.X, 0.0, this->B.Z } - back * (0.932 * L) + Vec3{ 0.0, 0.528 * L, 0.0 };
+    this->KeyB = static_cast<int>(std::lround(0.45 * (frames - 1)));
+  }
+
+  Pose At(int frame) const
+  {
+    Pose pose;
+    if (frame <= this->KeyB)
+    {
+      // Approach: fast at A, slowing down to a stop at B (ease-out), the
+      // view turning from the herd's centre to the focus object.
+      const double s = this->KeyB > 0 ? static_cast<double>(frame) / this->KeyB : 1.0;
+      pose.Position = Lerp(this->A, this->B, 1.0 - (1.0 - s) * (1.0 - s));
+      pose.FocalPoint = Lerp(this->Center, this->Target, SmoothStep(1.3 * s));
+    }
+    else
+    {
+      // After the turn (one frame): backing away, slowly at first (ease-in),
+      // the view drifting back to the herd's centre.
+      const int last = this->Frames - 1;
+      const double s = last > this->KeyB + 1
+        ? static_cast<double>(frame - this->KeyB - 1) / (last - this->KeyB - 1)
+        : 1.0;
+      pose.Position = Lerp(this->B, this->C, s * s);
+      pose.FocalPoint = Lerp(this->TurnFocus, this->Center, SmoothStep(s));
+    }
+    return pose;
+  }
+
+  int GetKeyA() const { return 0; }
+  int GetKeyB() const { return this->KeyB; }
+  int GetKeyTurn() const { return std::min(this->KeyB + 1, this->Frames - 1); }
+  int GetKeyC() const { return this->Frames - 1; }
+
+private:
+  int Frames;
+  int KeyB = 0;
+  Vec3 Center, Target, A, B, C, TurnDirection, TurnFocus;
+};
+
+void ApplyPose(vtkCamera* camera, const Pose& pose)
+{
+  camera->SetPosition(pose.Position.X, pose.Position.Y, pose.Position.Z);
+  camera->SetFocalPoint(pose.FocalPoint.X, pose.FocalPoint.Y, pose.FocalPoint.Z);
+  camera->SetViewUp(0.0, 1.0, 0.0);
+  camera->SetViewAngle(ViewAngle);
+}
+
+//------------------------------------------------------------------------------
+// vtkLODProp3D that remembers the frame it was last drawn in, so that culled
+// props (which keep their last selection) are not counted.
+
+class CountingLODProp3D : public vtkLODProp3D
+{
+public:
+  static CountingLODProp3D* New();
+  vtkTypeMacro(CountingLODProp3D, vtkLODProp3D);
+
+  int RenderOpaqueGeometry(vtkViewport* viewport) override
+  {
+    this->LastFrame = CurrentFrame;
+    return this->Superclass::RenderOpaqueGeometry(viewport);
+  }
+
+  static long CurrentFrame;
+  long LastFrame = -1;
+
+protected:
+  CountingLODProp3D() = default;
+  ~CountingLODProp3D() override = default;
+
+private:
+  CountingLODProp3D(const CountingLODProp3D&) = delete;
+  void operator=(const CountingLODProp3D&) = delete;
+};
+long CountingLODProp3D::CurrentFrame = 0;
+vtkStandardNewMacro(CountingLODProp3D);
+
+//------------------------------------------------------------------------------
+// Images
+
+using Image = std::vector<unsigned char>; ///< WindowSize^2 RGB, bottom row first
+
+Image Capture(vtkRenderWindow* window, bool front)
+{
+  vtkNew<vtkUnsignedCharArray> pixels;
+  window->GetPixelData(0, 0, WindowSize - 1, WindowSize - 1, front ? 1 : 0, pixels);
+  if (pixels->GetNumberOfComponents() != 3 ||
+    pixels->GetNumberOfTuples() != static_cast<vtkIdType>(WindowSize) * WindowSize)
+  {
+    throw std::runtime_error("GetPixelData returned an unexpected image");
+  }
+  const unsigned char* data = pixels->GetPointer(0);
+  return Image(data, data + 3 * static_cast<size_t>(WindowSize) * WindowSize);
+}
+
+struct Comparison
+{
+  double PSNR = NaN; ///< capped at PSNRCap
+  bool Identical = false;
+};
+
+Comparison Compare(Image& image, Image& reference)
+{
+  const OIIO::ImageSpec spec(WindowSize, WindowSize, 3, OIIO::TypeDesc::UINT8);
+  const OIIO::ImageBuf a(spec, image.data());
+  const OIIO::ImageBuf b(spec, reference.data());
+  // One thread: the comparison runs between timed frames and must not leave
+  // a pool of busy threads behind on a 2-core machine.
+  const auto result = OIIO::ImageBufAlgo::compare(a, b, 1.0f, 1.0f, OIIO::ROI(), 1);
+  if (a.has_error() || b.has_error())
+  {
+    throw std::runtime_error("OpenImageIO compare failed: " + a.geterror() + b.geterror());
+  }
+  Comparison comparison;
+  comparison.Identical = result.rms_error == 0.0;
+  comparison.PSNR = comparison.Identical ? PSNRCap : std::min(result.PSNR, PSNRCap);
+  return comparison;
+}
+
+void WritePNG(Image& image, const std::filesystem::path& path)
+{
+  vtkNew<vtkUnsignedCharArray> pixels;
+  pixels->SetNumberOfComponents(3);
+  pixels->SetArray(image.data(), static_cast<vtkIdType>(image.size()), 1); // 1: do not free
+  vtkNew<vtkImageData> data;
+  data->SetDimensions(WindowSize, WindowSize, 1);
+  data->GetPointData()->SetScalars(pixels);
+  vtkNew<vtkPNGWriter> writer;
+  writer->SetInputData(data);
+  writer->SetFileName(path.string().c_str());
+  writer->Write();
+  if (writer->GetErrorCode() != 0)
+  {
+    throw std::runtime_error("cannot write " + path.string());
+  }
+}
+
+//------------------------------------------------------------------------------
+// Records and statistics
+
+struct FrameRecord
+{
+  double Measured = NaN;         ///< wall clock around Render() (+ glFinish), seconds
+  double RendererMeasured = NaN; ///< vtkTimeCriticalRenderer::GetMeasuredFrameTime() after it
+  double Predicted = NaN;
+  double Optimizer = NaN;
+  double Heuristics = NaN;
+  int Iterations = 0;
+  bool Converged = true;
+  double Triangles = 0.0;
+  double VisibleTriangles = 0.0; ///< full-resolution triangles of the objects not culled
+  double Culled = 0.0;
+  double PSNR = NaN;
+  bool Identical = false;
+  std::array<int, 6> LODCounts{}; ///< vtkLODProp3D: props drawn at each level
+};
+
+struct Statistics
+{
+  int Frames = 0;
+  double Mean = NaN, Median = NaN, Min = NaN, Max = NaN, CV = NaN;
+  double ShareWithin = NaN; ///< frames <= 1.1 target
+  double PredictionError = NaN, PredictionErrorMax = NaN;
+  double RendererVsWall = NaN; ///< mean (renderer measured - wall) / wall
+  double OptimizerMean = NaN, OptimizerMax = NaN;
+  double IterationsMean = NaN;
+  double PSNRMean = NaN, PSNRMedian = NaN, PSNRMin = NaN;
+  int IdenticalFrames = 0;
+  double TrianglesMean = NaN;
+  int ReducedFrames = 0; ///< vtkLODProp3D: frames with some prop below its full level
+  std::array<long long, 6> LODPropFrames{}; ///< vtkLODProp3D: props drawn per level, all frames
+};
+
+struct PolicyRun
+{
+  const PolicyInfo* Policy = nullptr;
+  std::vector<FrameRecord> Frames;
+  Statistics Stats;
+  double Seconds = 0.0;
+  /// Vertex buffer (re)builds of the multiresolution mapper during the timed
+  /// frames: they should be 0, only index buffers change per frame.
+  long long VertexBufferBuilds = 0;
+  /// vtkLODProp3D after the run: mean estimated render time of each level over
+  /// all props, and mean allocated render time of the props drawn last frame.
+  std::vector<double> LODEstimated;
+  double LODAllocated = NaN;
+};
+
+double Mean(const std::vector<double>& v)
+{
+  if (v.empty())
+  {
+    return NaN;
+  }
+  double sum = 0.0;
+  for (double x : v)
+  {
+    sum += x;
+  }
+  return sum / static_cast<double>(v.size());
+}
+
+double MedianOf(std::vector<double> v)
+{
+  if (v.empty())
+  {
+    return NaN;
+  }
+  std::sort(v.begin(), v.end());
+  const size_t m = v.size() / 2;
+  return v.size() % 2 ? v[m] : 0.5 * (v[m - 1] + v[m]);
+}
+
+Statistics ComputeStatistics(const std::vector<FrameRecord>& frames, double target)
+{
+  Statistics s;
+  s.Frames = static_cast<int>(frames.size());
+  std::vector<double> measured, error, rendererDiff, optimizer, iterations, psnr, triangles;
+  int within = 0;
+  for (size_t i = 0; i < frames.size(); ++i)
+  {
+    const FrameRecord& f = frames[i];
+    measured.push_back(f.Measured);
+    within += f.Measured <= 1.1 * target ? 1 : 0;
+    if (std::isfinite(f.Predicted) && f.Measured > 0.0)
+    {
+      error.push_back(std::abs(f.Predicted - f.Measured) / f.Measured);
+    }
+    if (std::isfinite(f.RendererMeasured) && f.Measured > 0.0)
+    {
+      rendererDiff.push_back((f.RendererMeasured - f.Measured) / f.Measured);
+    }
+    if (std::isfinite(f.Optimizer))
+    {
+      optimizer.push_back(f.Optimizer);
+      iterations.push_back(f.Iterations);
+    }
+    if (std::isfinite(f.PSNR))
+    {
+      psnr.push_back(f.PSNR);
+      s.IdenticalFrames += f.Identical ? 1 : 0;
+    }
+    triangles.push_back(f.Triangles);
+    bool reduced = false;
+    for (size_t level = 0; level < f.LODCounts.size(); ++level)
+    {
+      s.LODPropFrames[level] += f.LODCounts[level];
+      reduced = reduced || (level > 0 && f.LODCounts[level] > 0);
+    }
+    s.ReducedFrames += reduced ? 1 : 0;
+  }
+  if (measured.empty())
+  {
+    return s;
+  }
+  s.Mean = Mean(measured);
+  s.Median = MedianOf(measured);
+  s.Min = *std::min_element(measured.begin(), measured.end());
+  s.Max = *std::max_element(measured.begin(), measured.end());
+  double variance = 0.0;
+  for (double x : measured)
+  {
+    variance += (x - s.Mean) * (x - s.Mean);
+  }
+  variance /= static_cast<double>(measured.size());
+  s.CV = s.Mean > 0.0 ? std::sqrt(variance) / s.Mean : NaN;
+  s.ShareWithin = static_cast<double>(within) / static_cast<double>(measured.size());
+  s.PredictionError = Mean(error);
+  s.PredictionErrorMax = error.empty() ? NaN : *std::max_element(error.begin(), error.end());
+  s.RendererVsWall = Mean(rendererDiff);
+  s.OptimizerMean = Mean(optimizer);
+  s.OptimizerMax = optimizer.empty() ? NaN : *std::max_element(optimizer.begin(), optimizer.end());
+  s.IterationsMean = Mean(iterations);
+  s.PSNRMean = Mean(psnr);
+  s.PSNRMedian = MedianOf(psnr);
+  s.PSNRMin = psnr.empty() ? NaN : *std::min_element(psnr.begin(), psnr.end());
+  s.TrianglesMean = Mean(triangles);
+  return s;
+}
+
+//------------------------------------------------------------------------------
+// The benchmark
+
+struct Checks
+{
+  bool FrontEqualsBack = false;
+  bool Deterministic = false;
+  double LODFullVsReferencePSNR = NaN; ///< vtkLODProp3D forced to level 0 at A vs the reference
+};
+
+class Walkthrough
+{
+public:
+  Walkthrough(const Settings& settings, const ObjectMesh& object, const Scene& scene,
+    const CameraPath& path)
+    : Options(settings)
+    , Object(object)
+    , Layout(scene)
+    , Path(path)
+  {
+  }
+
+  void Setup();
+  void Calibrate();
+  PolicyRun Run(const PolicyInfo& policy);
+  void WriteResolutionMaps();
+
+  std::vector<Image> Reference;
+  Checks Check;
+  double CalibrationSeconds = 0.0;
+  double Coefficients[5] = { NaN, NaN, NaN, NaN, NaN }; ///< frame, draw call, triangle, pixel, margin
+  double SetupSeconds = 0.0;
+
+private:
+  vtkSmartPointer<vtkTimeCriticalRenderer> MakeTimeCriticalRenderer(int policy);
+  void Use(vtkRenderer* renderer);
+  double TimedRender();
+  int Key(int frame) const;
+  void SaveKeyFrame(const std::string& policy, int frame, Image& image);
+
+  const Settings& Options;
+  const ObjectMesh& Object;
+  const Scene& Layout;
+  const CameraPath& Path;
+
+  vtkNew<vtkRenderWindow> Window;
+  vtkNew<vtkCamera> Camera;
+  vtkNew<vtkMultiresolutionPolyDataMapper> Mapper;
+  vtkNew<vtkActor> Actor;
+  vtkSmartPointer<vtkRenderer> Current;
+  std::vector<vtkSmartPointer<vtkPolyDataMapper>> LODMappers;
+  std::vector<vtkSmartPointer<CountingLODProp3D>> LODProps;
+  std::vector<int> LODIds;
+  vtkNew<vtkRenderer> LODRenderer;
+  /// Object resolutions of TimeCritical at key frames B and the turn, for the resolution maps.
+  std::vector<std::vector<double>> MapResolutions;
+  std::vector<int> MapFrames;
+};
+
+void SetBackground(vtkRenderer* renderer)
+{
+  renderer->SetBackground(0.32, 0.36, 0.45);
+}
+
+void Walkthrough::Setup()
+{
+  const Clock::time_point start = Clock::now();
+  this->Window->SetSize(WindowSize, WindowSize);
+  this->Window->SetMultiSamples(0);
+  this->Window->SetWindowName("WalkthroughBenchmark");
+  ApplyPose(this->Camera, this->Path.At(0));
+
+  vtkNew<vtkMultiBlockDataSet> blocks;
+  blocks->SetNumberOfBlocks(static_cast<unsigned>(this->Layout.Objects.size()));
+  for (size_t i = 0; i < this->Layout.Objects.size(); ++i)
+  {
+    blocks->SetBlock(static_cast<unsigned>(i), MakeCopy(this->Object.TOM, this->Layout.Objects[i]));
+  }
+  this->Mapper->SetInputDataObject(blocks);
+  this->Actor->SetMapper(this->Mapper);
+
+  // vtkLODProp3D scene: the same placements as actor matrices, the six LOD
+  // mappers shared by all props, one property (the object's colour) per prop.
+  for (const auto& lod : this->Object.LODs)
+  {
+    auto mapper = vtkSmartPointer<vtkPolyDataMapper>::New();
+    mapper->SetInputData(lod);
+    mapper->ScalarVisibilityOff();
+    this->LODMappers.push_back(mapper);
+  }
+  for (const Placement& place : this->Layout.Objects)
+  {
+    auto prop = vtkSmartPointer<CountingLODProp3D>::New();
+    vtkNew<vtkProperty> property;
+    // The same colour values the vertex colours hold: diffuse color = c / 255 in both.
+    property->SetColor(place.Color[0] / 255.0, place.Color[1] / 255.0, place.Color[2] / 255.0);
+    std::vector<int> ids;
+    for (size_t level = 0; level < this->LODMappers.size(); ++level)
+    {
+      const int id = prop->AddLOD(this->LODMappers[level], property, 0.0);
+      prop->SetLODLevel(id, static_cast<double>(level)); // lower level = better quality
+      ids.push_back(id);
+    }
+    if (this->LODIds.empty())
+    {
+      this->LODIds = ids;
+    }
+    else if (ids != this->LODIds)
+    {
+      throw std::runtime_error("vtkLODProp3D gave different LOD ids to equal props");
+    }
+    prop->SetUserMatrix(place.Transform->GetMatrix());
+    this->LODRenderer->AddViewProp(prop);
+    this->LODProps.push_back(prop);
+  }
+  this->LODRenderer->SetActiveCamera(this->Camera);
+  SetBackground(this->LODRenderer);
+  this->SetupSeconds = Seconds(start, Clock::now());
+}
+
+void Walkthrough::Use(vtkRenderer* renderer)
+{
+  if (this->Current)
+  {
+    this->Window->RemoveRenderer(this->Current);
+  }
+  this->Current = renderer;
+  this->Window->AddRenderer(renderer);
+}
+
+vtkSmartPointer<vtkTimeCriticalRenderer> Walkthrough::MakeTimeCriticalRenderer(int policy)
+{
+  auto renderer = vtkSmartPointer<vtkTimeCriticalRenderer>::New();
+  renderer->AddActor(this->Actor);
+  renderer->SetActiveCamera(this->Camera);
+  SetBackground(renderer);
+  renderer->SetTargetFrameTime(this->Options.Target);
+  renderer->SetPolicy(policy);
+  if (std::isfinite(this->Coefficients[0]))
+  {
+    // Every policy starts from the same calibration (and refines it online),
+    // so results do not depend on the order the policies run in.
+    renderer->AutomaticCalibrationOff();
+    renderer->SetCostCoefficients(
+      this->Coefficients[0], this->Coefficients[1], this->Coefficients[2], this->Coefficients[3]);
+    renderer->SetCostMargin(this->Coefficients[4]);
+  }
+  return renderer;
+}
+
+void Walkthrough::Calibrate()
+{
+  auto renderer = this->MakeTimeCriticalRenderer(vtkTimeCriticalRenderer::ACTIVE_SET);
+  this->Use(renderer);
+  ApplyPose(this->Camera, this->Path.At(0));
+  renderer->ResetCameraClippingRange(const_cast<double*>(this->Layout.Bounds));
+  const Clock::time_point start = Clock::now();
+  if (!renderer->Calibrate())
+  {
+    throw std::runtime_error("vtkTimeCriticalRenderer::Calibrate() failed on the scene");
+  }
+  this->CalibrationSeconds = Seconds(start, Clock::now());
+  this->Coefficients[0] = renderer->GetFrameCost();
+  this->Coefficients[1] = renderer->GetDrawCallCost();
+  this->Coefficients[2] = renderer->GetTriangleCost();
+  this->Coefficients[3] = renderer->GetPixelCost();
+  this->Coefficients[4] = renderer->GetCostMargin();
+}
+
+double Walkthrough::TimedRender()
+{
+  // glFinish after Render(): the frame is only done when the rasterizer is,
+  // whatever the window does at the buffer swap.
+  const Clock::time_point start = Clock::now();
+  this->Window->Render();
+  this->Window->WaitForCompletion();
+  return Seconds(start, Clock::now());
+}
+
+int Walkthrough::Key(int frame) const
+{
+  if (frame == this->Path.GetKeyA())
+  {
+    return 0;
+  }
+  if (frame == this->Path.GetKeyB())
+  {
+    return 1;
+  }
+  if (frame == this->Path.GetKeyTurn())
+  {
+    return 2;
+  }
+  if (frame == this->Path.GetKeyC())
+  {
+    return 3;
+  }
+  return -1;
+}
+
+const char* const KeyNames[] = { "A", "B", "turn", "C" };
+
+void Walkthrough::SaveKeyFrame(const std::string& policy, int frame, Image& image)
+{
+  const int key = this->Key(frame);
+  if (key >= 0)
+  {
+    WritePNG(image, std::filesystem::path(this->Options.Output) /
+        (policy + "_" + KeyNames[key] + ".png"));
+  }
+}
+
+PolicyRun Walkthrough::Run(const PolicyInfo& policy)
+{
+  PolicyRun run;
+  run.Policy = &policy;
+  const bool lod = policy.Kind == PolicyKind::LODProp3D;
+  const bool reference = policy.Kind == PolicyKind::None;
+  vtkSmartPointer<vtkTimeCriticalRenderer> tc;
+  if (lod)
+  {
+    this->Use(this->LODRenderer);
+    // vtkLODProp3D chooses levels from the time the renderer allocates it,
+    // which follows the window's desired update rate.
+    this->Window->SetDesiredUpdateRate(1.0 / this->Options.Target);
+  }
+  else
+  {
+    tc = this->MakeTimeCriticalRenderer(policy.RendererPolicy);
+    this->Use(tc);
+    this->Window->SetDesiredUpdateRate(0.0001);
+  }
+  const Clock::time_point start = Clock::now();
+  const int frames = this->Options.Frames;
+  if (reference)
+  {
+    this->Reference.assign(static_cast<size_t>(frames), Image());
+  }
+
+  // Warm-up at the first camera, untimed: shaders, buffers, the policies'
+  // first-frame state; vtkLODProp3D needs one frame per never-drawn level.
+  const int warmup = lod ? std::max(this->Options.WarmupFrames, this->Options.LODWarmupFrames)
+                         : this->Options.WarmupFrames;
+  ApplyPose(this->Camera, this->Path.At(0));
+  this->Current->ResetCameraClippingRange(const_cast<double*>(this->Layout.Bounds));
+  Image previous;
+  for (int i = 0; i < warmup; ++i)
+  {
+    ++CountingLODProp3D::CurrentFrame;
+    this->TimedRender();
+    if (reference && i + 2 >= warmup)
+    {
+      // The reference must be what the screen shows and the same every time.
+      Image front = Capture(this->Window, true);
+      if (i + 1 == warmup)
+      {
+        this->Check.FrontEqualsBack = front == Capture(this->Window, false);
+        this->Check.Deterministic = !previous.empty() && front == previous;
+      }
+      previous = std::move(front);
+    }
+  }
+  if (lod && !this->Reference.empty())
+  {
+    // Sanity check of the comparison itself: every prop at its full level
+    // must match the reference closely (same mesh, colours and lights).
+    for (auto& prop : this->LODProps)
+    {
+      prop->AutomaticLODSelectionOff();
+      prop->SetSelectedLODID(this->LODIds[0]);
+    }
+    ++CountingLODProp3D::CurrentFrame;
+    this->TimedRender();
+    Image full = Capture(this->Window, true);
+    this->Check.LODFullVsReferencePSNR = Compare(full, this->Reference[0]).PSNR;
+    WritePNG(full, std::filesystem::path(this->Options.Output) / "lodprop3d_A_full_level.png");
+    for (auto& prop : this->LODProps)
+    {
+      prop->AutomaticLODSelectionOn();
+    }
+    for (int i = 0; i < 2; ++i) // let the level-0 timings blend out again
+    {
+      ++CountingLODProp3D::CurrentFrame;
+      this->TimedRender();
+    }
+  }
+
+  const vtkIdType buildsBefore = this->Mapper->GetVertexBufferBuildCount();
+  for (int frame = 0; frame < frames; ++frame)
+  {
+    ApplyPose(this->Camera, this->Path.At(frame));
+    this->Current->ResetCameraClippingRange(const_cast<double*>(this->Layout.Bounds));
+    ++CountingLODProp3D::CurrentFrame;
+    FrameRecord record;
+    record.Measured = this->TimedRender();
+    if (tc)
+    {
+      record.RendererMeasured = tc->GetMeasuredFrameTime();
+      record.Predicted = tc->GetPredictedFrameTime();
+      record.Optimizer = tc->GetOptimizationTime();
+      record.Heuristics = tc->GetHeuristicsTime();
+      record.Iterations = tc->GetOptimizationIterations();
+      record.Converged = tc->GetOptimizationConverged();
+      record.Triangles = static_cast<double>(tc->GetTrianglesDrawn());
+      record.Culled = static_cast<double>(tc->GetNumberOfCulledObjects());
+      for (vtkIdType i = 0; i < tc->GetNumberOfObjects(); ++i)
+      {
+        if (tc->GetObjectResolution(i) > 0.0)
+        {
+          record.VisibleTriangles += static_cast<double>(
+            this->Mapper->GetObjectNumberOfTriangles(tc->GetObjectIndex(i)));
+        }
+      }
+      if (policy.Kind == PolicyKind::TimeCritical &&
+        (frame == this->Path.GetKeyB() || frame == this->Path.GetKeyTurn()))
+      {
+        std::vector<double> r(static_cast<size_t>(this->Mapper->GetNumberOfObjects()));
+        for (size_t i = 0; i < r.size(); ++i)
+        {
+          r[i] = this->Mapper->GetObjectResolution(static_cast<vtkIdType>(i));
+        }
+        this->MapResolutions.push_back(r);
+        this->MapFrames.push_back(frame);
+      }
+    }
+    else
+    {
+      // Triangles from the level each drawn prop used this frame.
+      int drawn = 0;
+      for (auto& prop : this->LODProps)
+      {
+        if (prop->LastFrame != CountingLODProp3D::CurrentFrame)
+        {
+          continue;
+        }
+        ++drawn;
+        const int id = prop->GetLastRenderedLODID();
+        const auto it = std::find(this->LODIds.begin(), this->LODIds.end(), id);
+        if (it == this->LODIds.end())
+        {
+          throw std::runtime_error("vtkLODProp3D drew an unknown LOD id");
+        }
+        const size_t level = static_cast<size_t>(it - this->LODIds.begin());
+        record.Triangles += static_cast<double>(this->Object.LODs[level]->GetNumberOfPolys());
+        record.VisibleTriangles += static_cast<double>(this->Object.Triangles);
+        ++record.LODCounts[level];
+      }
+      record.Culled = static_cast<double>(this->LODProps.size()) - drawn;
+    }
+
+    // Capture and compare outside the timed region.
+    Image image = Capture(this->Window, true);
+    if (reference)
+    {
+      this->SaveKeyFrame(policy.Name, frame, image);
+      this->Reference[static_cast<size_t>(frame)] = std::move(image);
+    }
+    else
+    {
+      if (!this->Reference.empty())
+      {
+        const Comparison c = Compare(image, this->Reference[static_cast<size_t>(frame)]);
+        record.PSNR = c.PSNR;
+        record.Identical = c.Identical;
+      }
+      this->SaveKeyFrame(policy.Name, frame, image);
+    }
+    run.Frames.push_back(record);
+    if (frame % 20 == 0 || frame == frames - 1)
+    {
+      char psnr[32] = "";
+      if (std::isfinite(record.PSNR))
+      {
+        std::snprintf(psnr, sizeof(psnr), ", PSNR %.2f dB", record.PSNR);
+      }
+      std::fprintf(stderr, "  [%s] frame %3d/%d: %7.1f ms, %9.0f triangles, %4.0f culled%s\n",
+        policy.Name, frame + 1, frames, 1000.0 * record.Measured, record.Triangles, record.Culled,
+        psnr);
+    }
+  }
+  run.Seconds = Seconds(start, Clock::now());
+  if (lod)
+  {
+    // Why levels are (not) chosen: what vtkLODProp3D believes each level costs.
+    run.LODEstimated.assign(this->LODIds.size(), 0.0);
+    double allocated = 0.0;
+    int drawn = 0;
+    for (auto& prop : this->LODProps)
+    {
+      for (size_t level = 0; level < this->LODIds.size(); ++level)
+      {
+        run.LODEstimated[level] += prop->GetLODEstimatedRenderTime(this->LODIds[level]) /
+          static_cast<double>(this->LODProps.size());
+      }
+      if (prop->LastFrame == CountingLODProp3D::CurrentFrame)
+      {
+        allocated += prop->GetAllocatedRenderTime();
+        ++drawn;
+      }
+    }
+    run.LODAllocated = drawn > 0 ? allocated / drawn : NaN;
+  }
+  run.VertexBufferBuilds =
+    static_cast<long long>(this->Mapper->GetVertexBufferBuildCount() - buildsBefore);
+  run.Stats = ComputeStatistics(run.Frames, this->Options.Target);
+  if (lod)
+  {
+    this->Window->SetDesiredUpdateRate(0.0001);
+  }
+  // Release the policy's renderer before the next one starts.
+  if (tc)
+  {
+    this->Window->RemoveRenderer(tc);
+    this->Current = nullptr;
+  }
+  return run;
+}
+
+void Walkthrough::WriteResolutionMaps()
+{
+  // A plain renderer with the same actor and camera: nothing re-chooses the
+  // resolutions, so the map shows exactly what TimeCritical drew at that frame.
+  vtkNew<vtkRenderer> plain;
+  plain->AddActor(this->Actor);
+  plain->SetActiveCamera(this->Camera);
+  SetBackground(plain);
+  this->Use(plain);
+  this->Mapper->ColorByResolutionOn();
+  for (size_t m = 0; m < this->MapFrames.size(); ++m)
+  {
+    const int frame = this->MapFrames[m];
+    const std::vector<double>& r = this->MapResolutions[m];
+    this->Mapper->SetObjectResolutions(r.data(), static_cast<vtkIdType>(r.size()));
+    ApplyPose(this->Camera, this->Path.At(frame));
+    plain->ResetCameraClippingRange(const_cast<double*>(this->Layout.Bounds));
+    this->Window->Render();
+    Image image = Capture(this->Window, true);
+    WritePNG(image, std::filesystem::path(this->Options.Output) /
+        (std::string("timecritical_") + KeyNames[this->Key(frame)] + "_resolution.png"));
+  }
+  this->Mapper->ColorByResolutionOff();
+  this->Window->RemoveRenderer(plain);
+  this->Current = nullptr;
+}
+
+//------------------------------------------------------------------------------
+// Output
+
+std::string Number(double value, int digits = 6)
+{
+  if (!std::isfinite(value))
+  {
+    return "null";
+  }
+  char buffer[64];
+  std::snprintf(buffer, sizeof(buffer), "%.*g", digits, value);
+  return buffer;
+}
+
+std::string Quoted(const std::string& text)
+{
+  std::string out = "\"";
+  for (char c : text)
+  {
+    if (c == '"' || c == '\\')
+    {
+      out += '\\';
+      out += c;
+    }
+    else if (static_cast<unsigned char>(c) < 0x20)
+    {
+      char buffer[8];
+      std::snprintf(buffer, sizeof(buffer), "\\u%04x", c);
+      out += buffer;
+    }
+    else
+    {
+      out += c;
+    }
+  }
+  return out + "\"";
+}
+
+template <class Getter>
+std::string Array(const std::vector<FrameRecord>& frames, Getter get, int digits = 6)
+{
+  std::string out = "[";
+  for (size_t i = 0; i < frames.size(); ++i)
+  {
+    out += (i ? "," : "") + Number(get(frames[i]), digits);
+  }
+  return out + "]";
+}
+
+struct Goal
+{
+  std::string Name, Required, Measured;
+  bool Met = false;
+  bool Evaluated = true; ///< false when the run lacks what the goal compares with
+};
+
+std::vector<Goal> EvaluateGoals(const std::vector<PolicyRun>& runs, double target)
+{
+  std::vector<Goal> goals;
+  const PolicyRun* tc = nullptr;
+  for (const auto& run : runs)
+  {
+    if (run.Policy->Kind == PolicyKind::TimeCritical)
+    {
+      tc = &run;
+    }
+  }
+  if (!tc)
+  {
+    return goals;
+  }
+  const Statistics& s = tc->Stats;
+  char buffer[128];
+  std::snprintf(buffer, sizeof(buffer), "%.1f%%", 100.0 * s.ShareWithin);
+  goals.push_back({ "frames <= " + Number(1100.0 * target, 4) + " ms", ">= 99%", buffer,
+    s.ShareWithin >= 0.99 });
+  std::snprintf(buffer, sizeof(buffer), "%.1f%%", 100.0 * s.CV);
+  goals.push_back({ "frame time CV (stddev/mean)", "<= 5%", buffer, s.CV <= 0.05 });
+  std::snprintf(buffer, sizeof(buffer), "%.1f%%", 100.0 * s.PredictionError);
+  goals.push_back({ "mean |predicted - measured| / measured", "<= 10%", buffer,
+    s.PredictionError <= 0.10 });
+  std::snprintf(buffer, sizeof(buffer), "max %.3f ms (mean %.3f)", 1000.0 * s.OptimizerMax,
+    1000.0 * s.OptimizerMean);
+  goals.push_back({ "optimizer time", "<= 1 ms", buffer, s.OptimizerMax <= 0.001 });
+  if (std::isfinite(s.PSNRMean))
+  {
+    double bestOther = -std::numeric_limits<double>::infinity();
+    std::string bestName = "-";
+    for (const auto& run : runs)
+    {
+      if (&run != tc && run.Policy->Kind != PolicyKind::None && std::isfinite(run.Stats.PSNRMean) &&
+        run.Stats.PSNRMean > bestOther)
+      {
+        bestOther = run.Stats.PSNRMean;
+        bestName = run.Policy->Name;
+      }
+    }
+    if (std::isfinite(bestOther))
+    {
+      std::snprintf(buffer, sizeof(buffer), "%.2f dB (next: %s %.2f)", s.PSNRMean,
+        bestName.c_str(), bestOther);
+      goals.push_back({ "mean PSNR vs full resolution", "best of all policies", buffer,
+        s.PSNRMean >= bestOther, true });
+    }
+    else
+    {
+      std::snprintf(buffer, sizeof(buffer), "%.2f dB (no other policy run)", s.PSNRMean);
+      goals.push_back(
+        { "mean PSNR vs full resolution", "best of all policies", buffer, false, false });
+    }
+  }
+  return goals;
+}
+
+void PrintTable(const std::vector<PolicyRun>& runs, const std::vector<Goal>& goals, double target)
+{
+  std::printf("\n%-18s %8s %8s %8s %7s %8s %8s %9s %9s %8s %8s %10s\n", "policy", "mean ms",
+    "median", "max ms", "CV", "<=110ms", "pred.err", "opt mean", "opt max", "PSNR dB",
+    "PSNR med", "tris/frame");
+  for (const auto& run : runs)
+  {
+    const Statistics& s = run.Stats;
+    const auto ms = [](double x) {
+      char b[32];
+      if (!std::isfinite(x))
+      {
+        return std::string("-");
+      }
+      std::snprintf(b, sizeof(b), "%.3f", 1000.0 * x);
+      return std::string(b);
+    };
+    const auto pct = [](double x) {
+      char b[32];
+      if (!std::isfinite(x))
+      {
+        return std::string("-");
+      }
+      std::snprintf(b, sizeof(b), "%.1f%%", 100.0 * x);
+      return std::string(b);
+    };
+    const bool isReference = run.Policy->Kind == PolicyKind::None;
+    const auto db = [isReference](double x) {
+      if (isReference || !std::isfinite(x))
+      {
+        return std::string(isReference ? "ref" : "-");
+      }
+      char b[32];
+      std::snprintf(b, sizeof(b), "%.2f", x);
+      return std::string(b);
+    };
+    std::printf("%-18s %8.1f %8.1f %8.1f %7s %8s %8s %9s %9s %8s %8s %10.0f\n", run.Policy->Label,
+      1000.0 * s.Mean, 1000.0 * s.Median, 1000.0 * s.Max, pct(s.CV).c_str(),
+      pct(s.ShareWithin).c_str(), pct(s.PredictionError).c_str(), ms(s.OptimizerMean).c_str(),
+      ms(s.OptimizerMax).c_str(), db(s.PSNRMean).c_str(), db(s.PSNRMedian).c_str(),
+      s.TrianglesMean);
+  }
+  std::printf("(target %.0f ms; PSNR against the 'none' frame of the same camera, identical "
+              "images counted as %.0f dB, which lifts the mean of policies that draw some frames "
+              "in full; optimizer times in ms)\n",
+    1000.0 * target, PSNRCap);
+  if (!goals.empty())
+  {
+    std::printf("\nTimeCritical goals\n%-40s %-22s %-32s %s\n", "goal", "required", "measured",
+      "status");
+    for (const Goal& g : goals)
+    {
+      std::printf("%-40s %-22s %-32s %s\n", g.Name.c_str(), g.Required.c_str(),
+        g.Measured.c_str(), !g.Evaluated ? "n/a" : g.Met ? "met" : "MISSED");
+    }
+  }
+}
+
+void WriteJson(const Settings& settings, const ObjectMesh& object, const Scene& scene,
+  const CameraPath& path, const Walkthrough& walk, const std::vector<PolicyRun>& runs,
+  const std::vector<Goal>& goals, const double load[2])
+{
+  std::ofstream out(settings.Json);
+  if (!out)
+  {
+    throw std::runtime_error("cannot write " + settings.Json);
+  }
+  out << "{\n  \"benchmark\": \"WalkthroughBenchmark\",\n";
+  out << "  \"settings\": {\"frames\": " << settings.Frames << ", \"objects\": " << settings.Objects
+      << ", \"target_frame_time\": " << Number(settings.Target) << ", \"quick\": "
+      << (settings.Quick ? "true" : "false") << ", \"warmup_frames\": " << settings.WarmupFrames
+      << ", \"lodprop3d_warmup_frames\": " << settings.LODWarmupFrames << ", \"seed\": "
+      << settings.Seed << ", \"window\": [" << WindowSize << ", " << WindowSize
+      << "], \"view_angle\": " << ViewAngle << ", \"psnr_cap\": " << PSNRCap
+      << ", \"load_average_start\": " << Number(load[0], 3) << ", \"load_average_end\": "
+      << Number(load[1], 3) << "},\n";
+  out << "  \"scene\": {\"mesh\": " << Quoted(object.Source) << ", \"substitute\": "
+      << (object.Substitute ? "true" : "false") << ", \"triangles_per_object\": "
+      << object.Triangles << ", \"base_triangles_per_object\": " << object.BaseTriangles
+      << ", \"objects\": " << scene.Objects.size() << ", \"triangles\": " << scene.Triangles
+      << ", \"grid\": " << scene.GridSide << ", \"spacing\": " << Number(scene.Spacing)
+      << ", \"jitter\": " << Number(scene.Jitter) << ", \"footprint_radius\": "
+      << Number(scene.Radius) << ", \"focus_object\": " << scene.Focus
+      << ", \"tom_build_seconds\": " << Number(object.BuildSeconds)
+      << ", \"setup_seconds\": " << Number(walk.SetupSeconds) << ", \"lod_triangles\": [";
+  for (size_t i = 0; i < object.LODs.size(); ++i)
+  {
+    out << (i ? ", " : "") << object.LODs[i]->GetNumberOfPolys();
+  }
+  out << "], \"lod_fractions\": [";
+  for (size_t i = 0; i < object.LODFractions.size(); ++i)
+  {
+    out << (i ? ", " : "") << Number(object.LODFractions[i]);
+  }
+  out << "]},\n";
+  out << "  \"calibration\": {\"seconds\": " << Number(walk.CalibrationSeconds)
+      << ", \"frame\": " << Number(walk.Coefficients[0]) << ", \"draw_call\": "
+      << Number(walk.Coefficients[1]) << ", \"triangle\": " << Number(walk.Coefficients[2])
+      << ", \"pixel\": " << Number(walk.Coefficients[3]) << ", \"margin\": "
+      << Number(walk.Coefficients[4]) << "},\n";
+  out << "  \"checks\": {\"front_buffer_equals_back_buffer\": "
+      << (walk.Check.FrontEqualsBack ? "true" : "false")
+      << ", \"reference_deterministic\": " << (walk.Check.Deterministic ? "true" : "false")
+      << ", \"lodprop3d_full_level_psnr\": " << Number(walk.Check.LODFullVsReferencePSNR) << "},\n";
+  out << "  \"path\": {\"key_frames\": {\"A\": " << path.GetKeyA() << ", \"B\": " << path.GetKeyB()
+      << ", \"turn\": " << path.GetKeyTurn() << ", \"C\": " << path.GetKeyC()
+      << "}, \"position\": [";
+  for (int f = 0; f < settings.Frames; ++f)
+  {
+    const Pose pose = path.At(f);
+    out << (f ? "," : "") << "[" << Number(pose.Position.X) << "," << Number(pose.Position.Y) << ","
+        << Number(pose.Position.Z) << "]";
+  }
+  out << "], \"focal_point\": [";
+  for (int f = 0; f < settings.Frames; ++f)
+  {
+    const Pose pose = path.At(f);
+    out << (f ? "," : "") << "[" << Number(pose.FocalPoint.X) << "," << Number(pose.FocalPoint.Y)
+        << "," << Number(pose.FocalPoint.Z) << "]";
+  }
+  out << "]},\n  \"policies\": [\n";
+  for (size_t p = 0; p < runs.size(); ++p)
+  {
+    const PolicyRun& run = runs[p];
+    const Statistics& s = run.Stats;
+    out << "    {\"name\": " << Quoted(run.Policy->Name) << ", \"label\": "
+        << Quoted(run.Policy->Label) << ", \"seconds\": " << Number(run.Seconds)
+        << ", \"vertex_buffer_builds\": " << run.VertexBufferBuilds
+        << ", \"lod_estimated_render_time\": [";
+    for (size_t level = 0; level < run.LODEstimated.size(); ++level)
+    {
+      out << (level ? ", " : "") << Number(run.LODEstimated[level]);
+    }
+    out << "], \"lod_allocated_render_time\": " << Number(run.LODAllocated)
+        << ",\n     \"statistics\": {\"frames\": " << s.Frames << ", \"mean\": " << Number(s.Mean)
+        << ", \"median\": " << Number(s.Median) << ", \"min\": " << Number(s.Min)
+        << ", \"max\": " << Number(s.Max) << ", \"cv\": " << Number(s.CV)
+        << ", \"share_within_110_percent\": " << Number(s.ShareWithin)
+        << ", \"prediction_error\": " << Number(s.PredictionError)
+        << ", \"prediction_error_max\": " << Number(s.PredictionErrorMax)
+        << ", \"renderer_vs_wall\": " << Number(s.RendererVsWall)
+        << ", \"optimizer_mean\": " << Number(s.OptimizerMean)
+        << ", \"optimizer_max\": " << Number(s.OptimizerMax)
+        << ", \"iterations_mean\": " << Number(s.IterationsMean)
+        << ", \"psnr_mean\": " << Number(s.PSNRMean) << ", \"psnr_median\": " << Number(s.PSNRMedian)
+        << ", \"psnr_min\": " << Number(s.PSNRMin)
+        << ", \"identical_frames\": " << s.IdenticalFrames
+        << ", \"triangles_mean\": " << Number(s.TrianglesMean, 9)
+        << ", \"frames_with_reduced_lod\": " << s.ReducedFrames << "},\n";
+    const auto& f = run.Frames;
+    out << "     \"frames\": {\n";
+    out << "      \"measured\": " << Array(f, [](const FrameRecord& r) { return r.Measured; }) << ",\n";
+    out << "      \"renderer_measured\": "
+        << Array(f, [](const FrameRecord& r) { return r.RendererMeasured; }) << ",\n";
+    out << "      \"predicted\": " << Array(f, [](const FrameRecord& r) { return r.Predicted; })
+        << ",\n";
+    out << "      \"optimizer\": " << Array(f, [](const FrameRecord& r) { return r.Optimizer; })
+        << ",\n";
+    out << "      \"heuristics\": " << Array(f, [](const FrameRecord& r) { return r.Heuristics; })
+        << ",\n";
+    out << "      \"iterations\": "
+        << Array(f, [](const FrameRecord& r) { return static_cast<double>(r.Iterations); }) << ",\n";
+    out << "      \"converged\": "
+        << Array(f, [](const FrameRecord& r) { return r.Converged ? 1.0 : 0.0; }) << ",\n";
+    out << "      \"triangles\": " << Array(f, [](const FrameRecord& r) { return r.Triangles; }, 10)
+        << ",\n";
+    out << "      \"visible_triangles\": "
+        << Array(f, [](const FrameRecord& r) { return r.VisibleTriangles; }, 10) << ",\n";
+    out << "      \"culled\": " << Array(f, [](const FrameRecord& r) { return r.Culled; }) << ",\n";
+    out << "      \"psnr\": " << Array(f, [](const FrameRecord& r) { return r.PSNR; }, 5);
+    if (run.Policy->Kind == PolicyKind::LODProp3D)
+    {
+      out << ",\n      \"lod_counts\": [";
+      for (size_t level = 0; level < 6; ++level)
+      {
+        out << (level ? ", " : "")
+            << Array(f, [level](const FrameRecord& r) { return r.LODCounts[level]; });
+      }
+      out << "]";
+    }
+    out << "\n     }}" << (p + 1 < runs.size() ? "," : "") << "\n";
+  }
+  out << "  ],\n  \"goals\": [";
+  for (size_t g = 0; g < goals.size(); ++g)
+  {
+    out << (g ? ", " : "") << "{\"goal\": " << Quoted(goals[g].Name) << ", \"required\": "
+        << Quoted(goals[g].Required) << ", \"measured\": " << Quoted(goals[g].Measured)
+        << ", \"met\": " << (!goals[g].Evaluated ? "null" : goals[g].Met ? "true" : "false")
+        << "}";
+  }
+  out << "]\n}\n";
+  if (!out)
+  {
+    throw std::runtime_error("error writing " + settings.Json);
+  }
+}
+
+std::string ShellQuoted(const std::string& text)
+{
+  std::string out = "'";
+  for (char c : text)
+  {
+    out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  }
+  return out + "'";
+}
+
+void Plot(const Settings& settings)
+{
+  const std::string script = TIMECRITICAL_WALKTHROUGH_PLOT_SCRIPT;
+  if (script.empty() || !std::filesystem::is_regular_file(script))
+  {
+    std::cerr << "plot: script not found, skipped\n";
+    return;
+  }
+  if (std::system("/usr/bin/python3 -c 'import matplotlib' >/dev/null 2>&1") != 0)
+  {
+    std::cerr << "plot: /usr/bin/python3 with matplotlib not available, skipped\n";
+    return;
+  }
+  const std::string png = (std::filesystem::path(settings.Output) / "walkthrough.png").string();
+  const std::string command = "/usr/bin/python3 " + ShellQuoted(script) + " " +
+    ShellQuoted(settings.Json) + " --output " + ShellQuoted(png);
+  if (std::system(command.c_str()) != 0)
+  {
+    throw std::runtime_error("the plot script failed: " + command);
+  }
+  std::cerr << "plot: " << png << "\n";
+}
+}
+
+int main(int argc, char* argv[])
+{
+  try
+  {
+    const Settings settings = ParseArguments(argc, argv);
+    if (!std::getenv("DISPLAY"))
+    {
+      std::cerr << "WalkthroughBenchmark needs an X display (VTK here is an X build): run it "
+                   "under xvfb-run -a -s \"-screen 0 1024x768x24\" or scripts/run-walkthrough.sh\n";
+      return 2;
+    }
+    std::filesystem::create_directories(settings.Output);
+    double load[2] = { NaN, NaN };
+    double sample[3];
+    if (getloadavg(sample, 3) > 0)
+    {
+      load[0] = sample[0];
+    }
+
+    std::cerr << "building the object's TOM and LODs...\n";
+    const ObjectMesh object = MakeObject(settings);
+    const Scene scene = PlaceObjects(settings, object.TOM, object.Triangles);
+    const CameraPath path(scene, settings.Frames);
+    std::cerr << "scene: " << scene.Objects.size() << " objects x " << object.Triangles
+              << " triangles = " << scene.Triangles << " triangles (" << object.Source << ")\n";
+
+    Walkthrough walk(settings, object, scene, path);
+    walk.Setup();
+    std::cerr << "calibrating the cost model...\n";
+    walk.Calibrate();
+    std::cerr << "  frame " << 1000.0 * walk.Coefficients[0] << " ms, draw call "
+              << 1000.0 * walk.Coefficients[1] << " ms, triangle " << 1e9 * walk.Coefficients[2]
+              << " ns, pixel " << 1e9 * walk.Coefficients[3] << " ns, margin "
+              << 1000.0 * walk.Coefficients[4] << " ms (" << walk.CalibrationSeconds << " s)\n";
+
+    std::vector<PolicyRun> runs;
+    for (const PolicyInfo* policy : settings.Policies)
+    {
+      std::cerr << "policy " << policy->Name << ": " << settings.Frames << " frames\n";
+      runs.push_back(walk.Run(*policy));
+      if (policy->Kind == PolicyKind::TimeCritical)
+      {
+        walk.WriteResolutionMaps();
+      }
+    }
+    if (getloadavg(sample, 3) > 0)
+    {
+      load[1] = sample[0];
+    }
+
+    const std::vector<Goal> goals = EvaluateGoals(runs, settings.Target);
+    std::printf("WalkthroughBenchmark: %zu objects, %lld triangles, %d frames, target %.0f ms%s\n",
+      scene.Objects.size(), static_cast<long long>(scene.Triangles), settings.Frames,
+      1000.0 * settings.Target, object.Substitute ? " (SUBSTITUTE MESH: cow.obj not found)" : "");
+    std::printf("reference images: front buffer %s back buffer, %s run to run; "
+                "vtkLODProp3D at full level vs reference: %s dB\n",
+      walk.Check.FrontEqualsBack ? "equals" : "DIFFERS FROM",
+      walk.Check.Deterministic ? "identical" : "NOT identical",
+      Number(walk.Check.LODFullVsReferencePSNR, 4).c_str());
+    for (const auto& run : runs)
+    {
+      if (run.Policy->Kind == PolicyKind::LODProp3D)
+      {
+        const Statistics& s = run.Stats;
+        std::printf("vtkLODProp3D: props drawn per level (100/50/25/12/6/3%%) over all frames: "
+                    "%lld/%lld/%lld/%lld/%lld/%lld; frames with a reduced level: %d of %d\n",
+          s.LODPropFrames[0], s.LODPropFrames[1], s.LODPropFrames[2], s.LODPropFrames[3],
+          s.LODPropFrames[4], s.LODPropFrames[5], s.ReducedFrames, s.Frames);
+        std::printf("vtkLODProp3D: mean estimated render time per level (ms): ");
+        for (double t : run.LODEstimated)
+        {
+          std::printf("%.4f ", 1000.0 * t);
+        }
+        std::printf("; mean time allocated to a drawn prop: %.4f ms\n", 1000.0 * run.LODAllocated);
+      }
+      if (run.VertexBufferBuilds > 0)
+      {
+        std::printf("note: %s: the multiresolution mapper rebuilt its vertex buffers %lld times "
+                    "during the timed frames\n",
+          run.Policy->Name, run.VertexBufferBuilds);
+      }
+      if (std::isfinite(run.Stats.RendererVsWall) &&
+        std::abs(run.Stats.RendererVsWall) > 0.05)
+      {
+        std::printf("note: %s: the renderer's measured frame time differs from the wall clock "
+                    "by %.1f%% on average\n",
+          run.Policy->Name, 100.0 * run.Stats.RendererVsWall);
+      }
+    }
+    PrintTable(runs, goals, settings.Target);
+    WriteJson(settings, object, scene, path, walk, runs, goals, load);
+    std::printf("\nJSON: %s, images in %s\n", settings.Json.c_str(), settings.Output.c_str());
+    std::fflush(stdout);
+    if (settings.Plot)
+    {
+      Plot(settings);
+    }
+    return 0;
+  }
+  catch (const std::exception& error)
+  {
+    std::cerr << "WalkthroughBenchmark: error: " << error.what() << "\n";
+    return 1;
+  }
+}

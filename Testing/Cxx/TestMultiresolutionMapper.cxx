@@ -1,0 +1,1062 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// vtkMultiresolutionPolyDataMapper: index data against the traversal core,
+// one draw call for many objects, index-only updates, culling, bad input,
+// non-TOM leaves, polydata and partitioned input, coloring and representations,
+// picking, and image baselines (normal colors and the resolution map).
+//
+// Image thresholds are those of TestTOMImageBaselines: a channel value
+// differing by more than 0.05 fails; at most 0.1% may fail, RMS below 0.005.
+#include "TOMMesh.h"
+#include "TOMTraversal.h"
+#include "TestImageCompare.h"
+#include "vtkExtractTOMResolution.h"
+#include "vtkMultiresolutionPolyDataMapper.h"
+#include "vtkTOMBuilder.h"
+#include "vtkTOMFieldData.h"
+#include "vtkTOMPolyDataMapper.h"
+
+#ifdef TIMECRITICAL_HAVE_ALLOCATION_COUNTER
+#include "AllocationCounter.h"
+#endif
+
+#include "vtkActor.h"
+#include "vtkCallbackCommand.h"
+#include "vtkCamera.h"
+#include "vtkCellArray.h"
+#include "vtkCellData.h"
+#include "vtkCellPicker.h"
+#include "vtkCompositeDataIterator.h"
+#include "vtkFloatArray.h"
+#include "vtkIntArray.h"
+#include "vtkLookupTable.h"
+#include "vtkMath.h"
+#include "vtkMultiBlockDataSet.h"
+#include "vtkNew.h"
+#include "vtkOpenGLPolyDataMapper.h"
+#include "vtkOpenGLVertexBufferObject.h"
+#include "vtkPNGWriter.h"
+#include "vtkPartitionedDataSet.h"
+#include "vtkPartitionedDataSetCollection.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkPolyDataMapper.h"
+#include "vtkPolyDataNormals.h"
+#include "vtkPropPicker.h"
+#include "vtkProperty.h"
+#include "vtkRenderWindow.h"
+#include "vtkRenderer.h"
+#include "vtkSmartPointer.h"
+#include "vtkSphereSource.h"
+#include "vtkUnsignedCharArray.h"
+#include "vtkWindowToImageFilter.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <limits>
+#include <set>
+#include <string>
+#include <vector>
+
+namespace
+{
+namespace tt = timecritical::testing;
+const tt::ImageTolerance Tolerance{ 0.05, 0.001, 0.005 };
+constexpr double PixelThreshold = 0.05;
+constexpr int ImageSize = 300;
+
+// Xvfb resets when its last client disconnects, and a window opened during
+// the reset fails ("bad X server connection"): one window stays open for the
+// whole run, as each test opens and closes its own.
+class KeepDisplayOpen : public ::testing::Environment
+{
+public:
+  void SetUp() override
+  {
+    this->Window = vtkSmartPointer<vtkRenderWindow>::New();
+    this->Window->SetOffScreenRendering(1);
+    this->Window->SetSize(1, 1);
+    vtkNew<vtkRenderer> renderer;
+    this->Window->AddRenderer(renderer);
+    this->Window->Render();
+  }
+  void TearDown() override { this->Window = nullptr; }
+
+private:
+  vtkSmartPointer<vtkRenderWindow> Window;
+};
+::testing::Environment* const KeepDisplay =
+  ::testing::AddGlobalTestEnvironment(new KeepDisplayOpen);
+
+std::string OutputPath(const std::string& name)
+{
+  return std::string(TIMECRITICAL_TEST_OUTPUT_DIR) + "/" + name + ".png";
+}
+
+std::string BaselinePath(const std::string& name)
+{
+  return std::string(TIMECRITICAL_BASELINE_DIR) + "/MultiresolutionMapper_" + name + ".png";
+}
+
+bool UpdatingBaselines()
+{
+  const char* update = std::getenv("TIMECRITICAL_UPDATE_BASELINES");
+  return update && std::string(update) == "1";
+}
+
+// A deterministic bumpy sphere with point normals, a point array "Height"
+// (z) and a cell array "Patch" (a few distinct values), so that every
+// resolution shows and both kinds of scalars can be tested.
+vtkSmartPointer<vtkPolyData> MakeSurface(
+  double radius, int theta, int phi, double cx, double cy, double cz, double frequency)
+{
+  vtkNew<vtkSphereSource> sphere;
+  sphere->SetRadius(radius);
+  sphere->SetThetaResolution(theta);
+  sphere->SetPhiResolution(phi);
+  sphere->Update();
+  auto data = vtkSmartPointer<vtkPolyData>::New();
+  data->DeepCopy(sphere->GetOutput());
+  data->GetPointData()->Initialize();
+  vtkPoints* points = data->GetPoints();
+  vtkNew<vtkFloatArray> height;
+  height->SetName("Height");
+  for (vtkIdType i = 0; i < points->GetNumberOfPoints(); ++i)
+  {
+    double p[3];
+    points->GetPoint(i, p);
+    const double bump = 1.0 +
+      0.08 * std::sin(frequency * p[0] / radius) * std::sin(7.0 * p[1] / radius) *
+        std::cos(5.0 * p[2] / radius);
+    points->SetPoint(i, cx + p[0] * bump, cy + p[1] * bump, cz + p[2] * bump);
+    height->InsertNextValue(static_cast<float>(p[2] / radius));
+  }
+  data->GetPointData()->AddArray(height);
+  vtkNew<vtkIntArray> patch;
+  patch->SetName("Patch");
+  for (vtkIdType c = 0; c < data->GetNumberOfCells(); ++c)
+  {
+    patch->InsertNextValue(static_cast<int>((c * 7) % 5));
+  }
+  data->GetCellData()->AddArray(patch);
+  vtkNew<vtkPolyDataNormals> normals;
+  normals->SetInputData(data);
+  normals->SplittingOff();
+  normals->Update();
+  vtkSmartPointer<vtkPolyData> out = normals->GetOutput();
+  return out;
+}
+
+vtkSmartPointer<vtkPolyData> BuildTOM(vtkPolyData* surface)
+{
+  vtkNew<vtkTOMBuilder> builder;
+  builder->SetInputData(surface);
+  builder->Update();
+  auto tom = vtkSmartPointer<vtkPolyData>::New();
+  tom->ShallowCopy(builder->GetOutput());
+  return tom;
+}
+
+vtkSmartPointer<vtkPolyData> MakeTOM(double radius, int theta, int phi, double cx = 0,
+  double cy = 0, double cz = 0, double frequency = 9.0)
+{
+  return BuildTOM(MakeSurface(radius, theta, phi, cx, cy, cz, frequency));
+}
+
+// Counts error or warning events of an object.
+struct EventCounter
+{
+  explicit EventCounter(vtkObject* object, unsigned long event)
+  {
+    this->Command->SetClientData(this);
+    this->Command->SetCallback([](vtkObject*, unsigned long, void* self, void*)
+      { ++static_cast<EventCounter*>(self)->Count; });
+    object->AddObserver(event, this->Command);
+  }
+  int Count = 0;
+  vtkNew<vtkCallbackCommand> Command;
+};
+
+// One actor in an offscreen window with a fixed camera.
+struct Scene
+{
+  explicit Scene(vtkMapper* mapper, int size = ImageSize)
+  {
+    this->Actor->SetMapper(mapper);
+    this->Actor->GetProperty()->SetColor(0.85, 0.7, 0.45);
+    this->Actor->GetProperty()->SetSpecular(0.3);
+    this->Renderer->AddActor(this->Actor);
+    this->Renderer->SetBackground(0.1, 0.1, 0.15);
+    this->Window->SetOffScreenRendering(1);
+    this->Window->SetMultiSamples(0);
+    this->Window->SetSize(size, size);
+    this->Window->AddRenderer(this->Renderer);
+    this->SetCamera(1.5, 1.1, 2.0);
+  }
+  void SetCamera(double x, double y, double z, double fx = 0, double fy = 0, double fz = 0)
+  {
+    vtkCamera* camera = this->Renderer->GetActiveCamera();
+    camera->SetPosition(x, y, z);
+    camera->SetFocalPoint(fx, fy, fz);
+    camera->SetViewUp(0, 1, 0);
+    // A fixed clipping range, not one from the bounds: images of different
+    // mappers of the same triangles must have the same depth values, or lines
+    // shared by two triangles may take the other triangle's color.
+    camera->SetClippingRange(0.5, 20.0);
+  }
+  void Render() { this->Window->Render(); }
+  void Save(const std::string& path)
+  {
+    this->Render();
+    vtkNew<vtkWindowToImageFilter> grab;
+    grab->SetInput(this->Window);
+    grab->ReadFrontBufferOff();
+    vtkNew<vtkPNGWriter> writer;
+    writer->SetInputConnection(grab->GetOutputPort());
+    writer->SetFileName(path.c_str());
+    writer->Write();
+  }
+  // Pixels that are not background in the last render.
+  int CountForeground()
+  {
+    vtkNew<vtkUnsignedCharArray> pixels;
+    const int* size = this->Window->GetSize();
+    this->Window->GetPixelData(0, 0, size[0] - 1, size[1] - 1, 0, pixels);
+    int count = 0;
+    for (vtkIdType i = 0; i < pixels->GetNumberOfTuples(); ++i)
+    {
+      const unsigned char* p = pixels->GetPointer(3 * i);
+      count += std::abs(p[0] - 26) + std::abs(p[1] - 26) + std::abs(p[2] - 38) > 6;
+    }
+    return count;
+  }
+  vtkNew<vtkActor> Actor;
+  vtkNew<vtkRenderer> Renderer;
+  vtkNew<vtkRenderWindow> Window;
+};
+
+// Triangles of a TOM at resolution r from the traversal core (leaf point ids).
+std::vector<uint32_t> TraversalTriangles(vtkPolyData* tom, double r)
+{
+  vtkNew<vtkTOMFieldData> reader;
+  EXPECT_TRUE(reader->Read(tom)) << reader->GetErrorMessage();
+  timecritical::TOMTraversal traversal(reader->GetMesh());
+  const uint32_t count =
+    traversal.GetVertexCountForTriangles(traversal.GetTrianglesForResolution(r));
+  std::vector<uint32_t> triangles;
+  const uint32_t m = traversal.Extract(count, triangles);
+  triangles.resize(3 * static_cast<size_t>(m));
+  return triangles;
+}
+
+vtkIdType ExtractedTriangles(vtkPolyData* tom, double r)
+{
+  vtkNew<vtkExtractTOMResolution> extract;
+  extract->SetInputData(tom);
+  extract->SetResolution(r);
+  extract->Update();
+  return extract->GetExtractedTriangleCount();
+}
+
+// Four TOMs of different sizes in nested blocks, with a null block and an
+// empty leaf in between: objects are the non-empty leaves in iteration order.
+struct NestedScene
+{
+  NestedScene()
+  {
+    this->Leaves = { MakeTOM(0.5, 40, 30, -1.2, 0, 0), MakeTOM(0.4, 24, 16, 0, 0, 0),
+      MakeTOM(0.45, 60, 40, 1.2, 0, 0), MakeTOM(0.3, 16, 12, 0, 1.0, 0) };
+    vtkNew<vtkMultiBlockDataSet> inner;
+    inner->SetNumberOfBlocks(4);
+    inner->SetBlock(0, this->Leaves[1]);
+    inner->SetBlock(1, nullptr);
+    vtkNew<vtkPolyData> empty;
+    inner->SetBlock(2, empty);
+    inner->SetBlock(3, this->Leaves[2]);
+    this->Input->SetNumberOfBlocks(4);
+    this->Input->SetBlock(0, this->Leaves[0]);
+    this->Input->SetBlock(1, inner);
+    this->Input->SetBlock(2, nullptr);
+    this->Input->SetBlock(3, this->Leaves[3]);
+  }
+  std::vector<vtkSmartPointer<vtkPolyData>> Leaves;
+  vtkNew<vtkMultiBlockDataSet> Input;
+};
+}
+
+//------------------------------------------------------------------------------
+TEST(MultiresolutionMapper, IndicesMatchTheTraversalCorePerObject)
+{
+  NestedScene data;
+  vtkNew<vtkMultiresolutionPolyDataMapper> mapper;
+  mapper->SetInputDataObject(data.Input);
+  mapper->UpdateObjects();
+  ASSERT_EQ(mapper->GetNumberOfObjects(), 4);
+
+  // Flat indices are those of the composite iterator, empty leaf skipped.
+  std::vector<unsigned int> flat;
+  vtkSmartPointer<vtkCompositeDataIterator> it;
+  it.TakeReference(data.Input->NewIterator());
+  for (it->InitTraversal(); !it->IsDoneWithTraversal(); it->GoToNextItem())
+  {
+    auto poly = vtkPolyData::SafeDownCast(it->GetCurrentDataObject());
+    if (poly && poly->GetNumberOfPoints() > 0)
+    {
+      flat.push_back(it->GetCurrentFlatIndex());
+    }
+  }
+  ASSERT_EQ(flat.size(), 4u);
+
+  const double resolutions[4] = { 1.0, 0.5, 0.2, 0.05 };
+  for (vtkIdType i = 0; i < 4; ++i)
+  {
+    EXPECT_EQ(mapper->GetObjectFlatIndex(i), flat[i]);
+    EXPECT_TRUE(mapper->GetObjectIsTOM(i));
+    EXPECT_EQ(mapper->GetObjectNumberOfVertices(i), data.Leaves[i]->GetNumberOfPoints());
+    EXPECT_EQ(mapper->GetObjectNumberOfTriangles(i), data.Leaves[i]->GetNumberOfPolys());
+    EXPECT_GT(mapper->GetObjectCoarsestResolution(i), 0.0);
+    EXPECT_LT(mapper->GetObjectCoarsestResolution(i), 0.2);
+    double bounds[6], expected[6];
+    mapper->GetObjectBounds(i, bounds);
+    data.Leaves[i]->GetBounds(expected);
+    for (int k = 0; k < 6; ++k)
+    {
+      EXPECT_NEAR(bounds[k], expected[k], 1e-6);
+    }
+    EXPECT_DOUBLE_EQ(mapper->GetObjectResolution(i), 1.0);
+    mapper->SetObjectResolution(i, resolutions[i]);
+  }
+
+  Scene scene(mapper);
+  scene.Render();
+  ASSERT_EQ(mapper->GetNumberOfDrawCalls(), 1);
+
+  // The index buffer is the concatenation of every object's traversal, shifted
+  // by the object's first point; triangle counts agree with the extraction filter.
+  std::vector<uint32_t> expected;
+  vtkIdType total = 0;
+  for (vtkIdType i = 0; i < 4; ++i)
+  {
+    const std::vector<uint32_t> triangles = TraversalTriangles(data.Leaves[i], resolutions[i]);
+    for (uint32_t v : triangles)
+    {
+      expected.push_back(v + static_cast<uint32_t>(mapper->GetObjectVertexOffset(i)));
+    }
+    EXPECT_EQ(
+      mapper->GetObjectRenderedTriangles(i), ExtractedTriangles(data.Leaves[i], resolutions[i]))
+      << "object " << i;
+    EXPECT_EQ(static_cast<size_t>(mapper->GetObjectRenderedTriangles(i)), triangles.size() / 3);
+    total += mapper->GetObjectRenderedTriangles(i);
+  }
+  EXPECT_EQ(mapper->GetRenderedTriangles(), total);
+  ASSERT_EQ(mapper->GetLastIndexCount(), static_cast<vtkIdType>(expected.size()));
+  const std::vector<uint32_t> drawn(
+    mapper->GetLastIndices(), mapper->GetLastIndices() + mapper->GetLastIndexCount());
+  EXPECT_EQ(drawn, expected);
+  EXPECT_LT(mapper->GetObjectRenderedTriangles(3), mapper->GetObjectNumberOfTriangles(3));
+
+  // Bounds: the union of the leaves (what the actor and ResetCamera see).
+  double bounds[6];
+  scene.Actor->GetBounds(bounds);
+  EXPECT_NEAR(bounds[0], data.Leaves[0]->GetBounds()[0], 1e-6);
+  EXPECT_NEAR(bounds[1], data.Leaves[2]->GetBounds()[1], 1e-6);
+  EXPECT_NEAR(bounds[3], data.Leaves[3]->GetBounds()[3], 1e-6);
+}
+
+TEST(MultiresolutionMapper, ReReadsWhenANestedBlockChanges)
+{
+  NestedScene data;
+  vtkNew<vtkMultiresolutionPolyDataMapper> mapper;
+  mapper->SetInputDataObject(data.Input);
+  mapper->UpdateObjects();
+  mapper->SetObjectResolution(0, 0.3);
+  mapper->SetObjectResolution(3, 0.6);
+  Scene scene(mapper);
+  scene.Render();
+  // Replace a leaf of the inner multiblock and fill the empty one.
+  auto inner = vtkMultiBlockDataSet::SafeDownCast(data.Input->GetBlock(1));
+  ASSERT_NE(inner, nullptr);
+  auto replacement = MakeTOM(0.35, 36, 24, 0, -1.0, 0);
+  auto filled = MakeTOM(0.2, 12, 10, 0.8, 0.8, 0);
+  inner->SetBlock(0, replacement);
+  inner->SetBlock(2, filled);
+  scene.Render();
+  // Objects: block 0, inner 0 (replaced), inner 2 (filled), inner 3, block 3.
+  ASSERT_EQ(mapper->GetNumberOfObjects(), 5);
+  EXPECT_EQ(mapper->GetObjectNumberOfTriangles(1), replacement->GetNumberOfPolys());
+  EXPECT_EQ(mapper->GetObjectNumberOfTriangles(2), filled->GetNumberOfPolys());
+  EXPECT_EQ(mapper->GetObjectNumberOfTriangles(4), data.Leaves[3]->GetNumberOfPolys());
+  // Resolutions stay with object indices; the new index starts at 1.
+  EXPECT_DOUBLE_EQ(mapper->GetObjectResolution(0), 0.3);
+  EXPECT_DOUBLE_EQ(mapper->GetObjectResolution(3), 0.6);
+  EXPECT_DOUBLE_EQ(mapper->GetObjectResolution(4), 1.0);
+  EXPECT_EQ(mapper->GetObjectRenderedTriangles(1), replacement->GetNumberOfPolys());
+  EXPECT_EQ(mapper->GetNumberOfDrawCalls(), 1);
+  // A leaf modified in place is read again too.
+  auto bigger = MakeTOM(0.2, 20, 16, 0.8, 0.8, 0);
+  filled->ShallowCopy(bigger);
+  scene.Render();
+  EXPECT_EQ(mapper->GetObjectNumberOfTriangles(2), bigger->GetNumberOfPolys());
+}
+
+TEST(MultiresolutionMapper, WireframeAndPointIndicesFollowTheTraversal)
+{
+  NestedScene data;
+  vtkNew<vtkMultiresolutionPolyDataMapper> mapper;
+  mapper->SetInputDataObject(data.Input);
+  mapper->UpdateObjects();
+  mapper->SetResolution(0.3);
+  Scene scene(mapper);
+  scene.Actor->GetProperty()->SetRepresentationToWireframe();
+  scene.Render();
+  EXPECT_EQ(mapper->GetLastIndexCount(), 6 * mapper->GetRenderedTriangles());
+  EXPECT_EQ(mapper->GetNumberOfDrawCalls(), 1);
+
+  scene.Actor->GetProperty()->SetRepresentationToPoints();
+  scene.Render();
+  EXPECT_EQ(mapper->GetLastIndexCount(), mapper->GetRenderedVertices());
+  // Points are the active vertices [offset, offset + n) of every object.
+  std::set<uint32_t> drawn(
+    mapper->GetLastIndices(), mapper->GetLastIndices() + mapper->GetLastIndexCount());
+  EXPECT_EQ(static_cast<vtkIdType>(drawn.size()), mapper->GetRenderedVertices());
+  EXPECT_EQ(*drawn.begin(), 0u);
+}
+
+TEST(MultiresolutionMapper, FiftyObjectsInOneDrawCall)
+{
+  vtkNew<vtkMultiBlockDataSet> blocks;
+  blocks->SetNumberOfBlocks(50);
+  for (unsigned int i = 0; i < 50; ++i)
+  {
+    blocks->SetBlock(i,
+      MakeTOM(
+        0.15, 10 + (i % 5) * 2, 8 + (i % 3) * 2, 0.4 * (i % 10) - 1.8, 0.4 * (i / 10) - 0.8, 0.0));
+  }
+  vtkNew<vtkMultiresolutionPolyDataMapper> mapper;
+  mapper->SetInputDataObject(blocks);
+  mapper->UpdateObjects();
+  ASSERT_EQ(mapper->GetNumberOfObjects(), 50);
+  for (vtkIdType i = 0; i < 50; ++i)
+  {
+    mapper->SetObjectResolution(i, 0.02 * static_cast<double>(i + 1));
+  }
+  Scene scene(mapper);
+  scene.SetCamera(0, 0, 6);
+  scene.Render();
+  EXPECT_EQ(mapper->GetNumberOfDrawCalls(), 1);
+  EXPECT_GT(mapper->GetRenderedTriangles(), 0);
+  EXPECT_GT(scene.CountForeground(), 1000);
+
+  // Everything culled: nothing drawn, no draw call.
+  mapper->SetResolution(0.0);
+  scene.Render();
+  EXPECT_EQ(mapper->GetNumberOfDrawCalls(), 0);
+  EXPECT_EQ(mapper->GetRenderedTriangles(), 0);
+  EXPECT_EQ(scene.CountForeground(), 0);
+}
+
+TEST(MultiresolutionMapper, ResolutionChangesRewriteOnlyTheIndexBuffer)
+{
+  NestedScene data;
+  vtkNew<vtkMultiresolutionPolyDataMapper> mapper;
+  mapper->SetInputDataObject(data.Input);
+  Scene scene(mapper);
+  scene.Render();
+  const vtkIdType vertexBuilds = mapper->GetVertexBufferBuildCount();
+  const vtkIdType indexBuilds = mapper->GetIndexBufferBuildCount();
+  const vtkMTimeType positions = mapper->GetVertexBufferUploadTime("vertexMC");
+  const vtkMTimeType normals = mapper->GetVertexBufferUploadTime("normalMC");
+  const vtkMTimeType mapperTime = mapper->GetMTime();
+  ASSERT_GT(positions, 0u);
+  ASSERT_GT(normals, 0u);
+  const vtkIdType full = mapper->GetRenderedTriangles();
+
+  // Nothing changed: nothing rebuilt.
+  scene.Render();
+  EXPECT_EQ(mapper->GetIndexBufferBuildCount(), indexBuilds);
+  std::vector<double> same(4, 1.0);
+  mapper->SetObjectResolutions(same.data(), 4);
+  scene.Render();
+  EXPECT_EQ(mapper->GetIndexBufferBuildCount(), indexBuilds);
+
+  for (int frame = 1; frame <= 5; ++frame)
+  {
+    mapper->SetObjectResolution(frame % 4, 0.1 * frame);
+    scene.Render();
+    EXPECT_EQ(mapper->GetIndexBufferBuildCount(), indexBuilds + frame);
+    EXPECT_EQ(mapper->GetVertexBufferBuildCount(), vertexBuilds);
+    EXPECT_EQ(mapper->GetVertexBufferUploadTime("vertexMC"), positions);
+    EXPECT_EQ(mapper->GetVertexBufferUploadTime("normalMC"), normals);
+  }
+  EXPECT_LT(mapper->GetRenderedTriangles(), full);
+  // Resolutions are render state: they do not modify the mapper.
+  EXPECT_EQ(mapper->GetMTime(), mapperTime);
+
+  // A property change goes through the superclass but uploads no vertex data.
+  scene.Actor->GetProperty()->SetRepresentationToWireframe();
+  scene.Render();
+  EXPECT_EQ(mapper->GetVertexBufferUploadTime("vertexMC"), positions);
+  EXPECT_EQ(mapper->GetVertexBufferUploadTime("normalMC"), normals);
+}
+
+#ifdef TIMECRITICAL_HAVE_ALLOCATION_COUNTER
+TEST(MultiresolutionMapper, ResolutionChangesDoNotAllocate)
+{
+  NestedScene data;
+  vtkNew<vtkMultiresolutionPolyDataMapper> mapper;
+  mapper->SetInputDataObject(data.Input);
+  Scene scene(mapper);
+  // Grow every buffer once (the largest index data is at full resolution).
+  scene.Render();
+  mapper->SetResolution(0.5);
+  scene.Render();
+  // VTK's own frame may allocate; a resolution change must add nothing to it.
+  const std::size_t before = tt::GetAllocationCount();
+  scene.Render();
+  const std::size_t plainFrame = tt::GetAllocationCount() - before;
+  const vtkIdType indexBuilds = mapper->GetIndexBufferBuildCount();
+  const std::size_t start = tt::GetAllocationCount();
+  mapper->SetObjectResolution(0, 0.3);
+  mapper->SetObjectResolution(2, 0.7);
+  scene.Render();
+  const std::size_t changedFrame = tt::GetAllocationCount() - start;
+  EXPECT_EQ(mapper->GetIndexBufferBuildCount(), indexBuilds + 1);
+  EXPECT_LE(changedFrame, plainFrame);
+}
+#endif
+
+TEST(MultiresolutionMapper, ZeroResolutionCullsAndBadValuesAreErrors)
+{
+  NestedScene data;
+  vtkNew<vtkMultiresolutionPolyDataMapper> mapper;
+  mapper->SetInputDataObject(data.Input);
+  mapper->UpdateObjects();
+  mapper->SetObjectResolution(1, 0.0);
+  Scene scene(mapper);
+  scene.Render();
+  EXPECT_EQ(mapper->GetObjectRenderedTriangles(1), 0);
+  EXPECT_GT(mapper->GetObjectRenderedTriangles(0), 0);
+  const uint32_t begin = static_cast<uint32_t>(mapper->GetObjectVertexOffset(1));
+  const uint32_t end = begin + static_cast<uint32_t>(mapper->GetObjectNumberOfVertices(1));
+  for (vtkIdType k = 0; k < mapper->GetLastIndexCount(); ++k)
+  {
+    const uint32_t v = mapper->GetLastIndices()[k];
+    ASSERT_FALSE(v >= begin && v < end) << "index " << k << " belongs to the culled object";
+  }
+
+  EventCounter errors(mapper, vtkCommand::ErrorEvent);
+  const vtkIdType indexBuilds = mapper->GetIndexBufferBuildCount();
+  mapper->SetObjectResolution(0, std::numeric_limits<double>::quiet_NaN());
+  EXPECT_EQ(errors.Count, 1);
+  mapper->SetObjectResolution(4, 0.5);
+  EXPECT_EQ(errors.Count, 2);
+  mapper->SetObjectResolution(-1, 0.5);
+  EXPECT_EQ(errors.Count, 3);
+  mapper->SetResolution(std::numeric_limits<double>::quiet_NaN());
+  EXPECT_EQ(errors.Count, 4);
+  std::vector<double> wrongSize(3, 0.5);
+  mapper->SetObjectResolutions(wrongSize.data(), 3);
+  EXPECT_EQ(errors.Count, 5);
+  EXPECT_DOUBLE_EQ(mapper->GetObjectResolution(0), 1.0);
+  EXPECT_DOUBLE_EQ(mapper->GetObjectResolution(2), 1.0);
+  EXPECT_DOUBLE_EQ(mapper->GetObjectResolution(1), 0.0);
+  scene.Render();
+  EXPECT_EQ(mapper->GetIndexBufferBuildCount(), indexBuilds);
+  // Out of range values are clamped, not errors.
+  mapper->SetObjectResolution(0, 7.0);
+  EXPECT_DOUBLE_EQ(mapper->GetObjectResolution(0), 1.0);
+  EXPECT_EQ(errors.Count, 5);
+}
+
+TEST(MultiresolutionMapper, NoInputAndEmptyInput)
+{
+  vtkNew<vtkMultiresolutionPolyDataMapper> mapper;
+  EXPECT_EQ(mapper->GetNumberOfObjects(), 0);
+  mapper->UpdateObjects();
+  EXPECT_EQ(mapper->GetNumberOfObjects(), 0);
+  EventCounter errors(mapper, vtkCommand::ErrorEvent);
+  {
+    Scene scene(mapper);
+    scene.Render(); // the renderer culls the actor: it has no bounds
+    mapper->RenderPiece(scene.Renderer, scene.Actor);
+    EXPECT_EQ(errors.Count, 1); // "no input"
+    EXPECT_EQ(mapper->GetRenderedTriangles(), 0);
+    double bounds[6];
+    mapper->GetBounds(bounds);
+    EXPECT_FALSE(vtkMath::AreBoundsInitialized(bounds));
+  }
+  vtkNew<vtkMultiBlockDataSet> empty;
+  empty->SetNumberOfBlocks(2);
+  vtkNew<vtkPolyData> nothing;
+  empty->SetBlock(0, nothing);
+  mapper->SetInputDataObject(empty);
+  const int before = errors.Count;
+  Scene scene(mapper);
+  scene.Render();
+  EXPECT_EQ(errors.Count, before);
+  EXPECT_EQ(mapper->GetNumberOfObjects(), 0);
+  EXPECT_EQ(mapper->GetNumberOfDrawCalls(), 0);
+  EXPECT_EQ(scene.CountForeground(), 0);
+}
+
+TEST(MultiresolutionMapper, NonTOMLeafRendersAtFullResolutionWithOneWarning)
+{
+  vtkNew<vtkSphereSource> plain;
+  plain->SetCenter(1.2, 0, 0);
+  plain->SetRadius(0.4);
+  plain->Update();
+  vtkNew<vtkMultiBlockDataSet> blocks;
+  blocks->SetNumberOfBlocks(2);
+  blocks->SetBlock(0, MakeTOM(0.5, 30, 20));
+  blocks->SetBlock(1, plain->GetOutput());
+  vtkNew<vtkMultiresolutionPolyDataMapper> mapper;
+  EventCounter warnings(mapper, vtkCommand::WarningEvent);
+  mapper->SetInputDataObject(blocks);
+  mapper->UpdateObjects();
+  ASSERT_EQ(mapper->GetNumberOfObjects(), 2);
+  EXPECT_FALSE(mapper->GetObjectIsTOM(1));
+  EXPECT_DOUBLE_EQ(mapper->GetObjectCoarsestResolution(1), 1.0);
+  mapper->SetResolution(0.1);
+  Scene scene(mapper);
+  scene.Render();
+  scene.Render();
+  EXPECT_EQ(mapper->GetObjectRenderedTriangles(1), plain->GetOutput()->GetNumberOfPolys());
+  EXPECT_LT(mapper->GetObjectRenderedTriangles(0), mapper->GetObjectNumberOfTriangles(0));
+  // A re-read (input modified) does not warn again.
+  blocks->Modified();
+  scene.Render();
+  EXPECT_EQ(warnings.Count, 1);
+  EXPECT_DOUBLE_EQ(mapper->GetObjectResolution(0), 0.1); // kept across the re-read
+}
+
+TEST(MultiresolutionMapper, PolyDataAndPartitionedInput)
+{
+  auto tom = MakeTOM(0.6, 50, 36);
+  vtkNew<vtkMultiresolutionPolyDataMapper> mapper;
+  mapper->SetInputDataObject(tom);
+  mapper->UpdateObjects();
+  ASSERT_EQ(mapper->GetNumberOfObjects(), 1);
+  EXPECT_EQ(mapper->GetObjectFlatIndex(0), 0u);
+  mapper->SetResolution(0.25);
+  Scene scene(mapper);
+  scene.Render();
+  EXPECT_EQ(mapper->GetRenderedTriangles(), ExtractedTriangles(tom, 0.25));
+  EXPECT_GT(scene.CountForeground(), 1000);
+
+  vtkNew<vtkPartitionedDataSetCollection> collection;
+  vtkNew<vtkPartitionedDataSet> first;
+  first->SetPartition(0, MakeTOM(0.3, 20, 14, -0.6, 0, 0));
+  vtkNew<vtkPartitionedDataSet> second;
+  second->SetPartition(0, MakeTOM(0.3, 24, 16, 0.6, 0, 0));
+  second->SetPartition(1, MakeTOM(0.3, 28, 18, 0, 0.6, 0));
+  collection->SetPartitionedDataSet(0, first);
+  collection->SetPartitionedDataSet(1, second);
+  vtkNew<vtkMultiresolutionPolyDataMapper> partitioned;
+  partitioned->SetInputDataObject(collection);
+  partitioned->UpdateObjects();
+  ASSERT_EQ(partitioned->GetNumberOfObjects(), 3);
+  const double r[3] = { 0.2, 0.5, 1.0 };
+  partitioned->SetObjectResolutions(r, 3);
+  Scene other(partitioned);
+  other.Render();
+  EXPECT_EQ(partitioned->GetNumberOfDrawCalls(), 1);
+  for (vtkIdType i = 0; i < 3; ++i)
+  {
+    vtkPolyData* leaf = vtkPolyData::SafeDownCast(
+      i == 0 ? first->GetPartition(0) : second->GetPartition(static_cast<unsigned int>(i - 1)));
+    EXPECT_EQ(partitioned->GetObjectRenderedTriangles(i), ExtractedTriangles(leaf, r[i]));
+  }
+  EXPECT_GT(other.CountForeground(), 1000);
+}
+
+// A polydata mapper of extracted resolutions (one actor per leaf) against the
+// multiresolution mapper of all leaves: same image with the same coloring.
+struct ColoringCase
+{
+  std::vector<vtkSmartPointer<vtkPolyData>> Leaves;
+  std::vector<double> Resolutions;
+};
+
+void ConfigureColoring(vtkMapper* mapper, bool cells)
+{
+  // Same vertex values on the GPU for both mappers (no shift and scale from
+  // different bounds), so that lines shared by two triangles break their
+  // depth ties the same way and take the same cell's color.
+  if (auto gl = vtkOpenGLPolyDataMapper::SafeDownCast(mapper))
+  {
+    gl->SetVBOShiftScaleMethod(vtkOpenGLVertexBufferObject::DISABLE_SHIFT_SCALE);
+  }
+  vtkNew<vtkLookupTable> lut;
+  lut->SetHueRange(0.0, 0.7);
+  lut->Build();
+  mapper->SetLookupTable(lut);
+  mapper->ScalarVisibilityOn();
+  if (cells)
+  {
+    mapper->SetScalarModeToUseCellFieldData();
+    mapper->SelectColorArray("Patch");
+    mapper->SetScalarRange(0, 4);
+  }
+  else
+  {
+    mapper->SetScalarModeToUsePointFieldData();
+    mapper->SelectColorArray("Height");
+    mapper->SetScalarRange(-1, 1);
+  }
+}
+
+void CompareWithExtraction(
+  const ColoringCase& input, bool cells, int representation, const std::string& name)
+{
+  vtkNew<vtkMultiBlockDataSet> blocks;
+  blocks->SetNumberOfBlocks(static_cast<unsigned int>(input.Leaves.size()));
+  for (size_t i = 0; i < input.Leaves.size(); ++i)
+  {
+    blocks->SetBlock(static_cast<unsigned int>(i), input.Leaves[i]);
+  }
+  vtkNew<vtkMultiresolutionPolyDataMapper> mapper;
+  mapper->SetInputDataObject(blocks);
+  mapper->UpdateObjects();
+  mapper->SetObjectResolutions(
+    input.Resolutions.data(), static_cast<vtkIdType>(input.Resolutions.size()));
+  ConfigureColoring(mapper, cells);
+  Scene scene(mapper);
+  scene.SetCamera(0.3, 0.8, 3.2);
+  scene.Actor->GetProperty()->SetRepresentation(representation);
+  scene.Actor->GetProperty()->SetPointSize(3);
+  const std::string image = OutputPath(name + "_multires");
+  scene.Save(image);
+
+  Scene reference(nullptr);
+  reference.Renderer->RemoveActor(reference.Actor);
+  reference.SetCamera(0.3, 0.8, 3.2);
+  std::vector<vtkSmartPointer<vtkActor>> actors;
+  for (size_t i = 0; i < input.Leaves.size(); ++i)
+  {
+    vtkNew<vtkExtractTOMResolution> extract;
+    extract->SetInputData(input.Leaves[i]);
+    extract->SetResolution(input.Resolutions[i]);
+    extract->Update();
+    vtkNew<vtkPolyDataMapper> plain;
+    plain->SetInputData(extract->GetOutput());
+    ConfigureColoring(plain, cells);
+    auto actor = vtkSmartPointer<vtkActor>::New();
+    actor->SetMapper(plain);
+    actor->GetProperty()->DeepCopy(scene.Actor->GetProperty());
+    reference.Renderer->AddActor(actor);
+    actors.push_back(actor);
+  }
+  const std::string expected = OutputPath(name + "_extracted");
+  reference.Save(expected);
+  const auto result = tt::CompareImages(image, expected, PixelThreshold);
+  EXPECT_TRUE(tt::Passes(result, Tolerance))
+    << name << ": " << tt::Describe(result) << " (" << image << " against " << expected << ")";
+}
+
+TEST(MultiresolutionMapper, PointAndCellScalarsMatchExtractedResolutions)
+{
+  ColoringCase input;
+  input.Leaves = { MakeTOM(0.55, 48, 32, -0.6, 0, 0), MakeTOM(0.5, 40, 28, 0.6, 0, 0, 6.0) };
+  input.Resolutions = { 0.3, 0.7 };
+  CompareWithExtraction(input, false, VTK_SURFACE, "PointScalars");
+  // Cell colors are looked up by primitive id: rebuilt for the dropped triangles.
+  CompareWithExtraction(input, true, VTK_SURFACE, "CellScalars");
+  CompareWithExtraction(input, true, VTK_WIREFRAME, "CellScalarsWireframe");
+  CompareWithExtraction(input, true, VTK_POINTS, "CellScalarsPoints");
+}
+
+TEST(MultiresolutionMapper, WireframeAndPointsRender)
+{
+  NestedScene data;
+  vtkNew<vtkMultiresolutionPolyDataMapper> mapper;
+  mapper->SetInputDataObject(data.Input);
+  mapper->SetResolution(0.4);
+  Scene scene(mapper);
+  scene.SetCamera(0, 0.3, 4);
+  const std::string surface = OutputPath("Representation_surface");
+  scene.Save(surface);
+  const int surfacePixels = scene.CountForeground();
+  scene.Actor->GetProperty()->SetRepresentationToWireframe();
+  const std::string wireframe = OutputPath("Representation_wireframe");
+  scene.Save(wireframe);
+  const int wirePixels = scene.CountForeground();
+  scene.Actor->GetProperty()->SetRepresentationToPoints();
+  scene.Actor->GetProperty()->SetPointSize(2);
+  scene.Save(OutputPath("Representation_points"));
+  const int pointPixels = scene.CountForeground();
+  EXPECT_GT(surfacePixels, 5000);
+  EXPECT_GT(wirePixels, 1000);
+  EXPECT_GT(pointPixels, 500);
+  EXPECT_LT(wirePixels, surfacePixels);
+  const auto result = tt::CompareImages(wireframe, surface, PixelThreshold);
+  ASSERT_TRUE(result.Loaded) << result.Message;
+  EXPECT_FALSE(tt::Passes(result, Tolerance)) << tt::Describe(result);
+}
+
+TEST(MultiresolutionMapper, GraphicsResourcesFollowTheWindow)
+{
+  NestedScene data;
+  vtkNew<vtkMultiresolutionPolyDataMapper> mapper;
+  mapper->SetInputDataObject(data.Input);
+  mapper->UpdateObjects();
+  mapper->SetResolution(0.5);
+  {
+    Scene first(mapper);
+    first.Render();
+    EXPECT_GT(first.CountForeground(), 1000);
+  } // the window goes first and releases the mapper's buffers
+  const vtkIdType builds = mapper->GetVertexBufferBuildCount();
+  Scene second(mapper);
+  second.Render();
+  EXPECT_GT(second.CountForeground(), 1000);
+  EXPECT_EQ(mapper->GetVertexBufferBuildCount(), builds + 1);
+  {
+    // Another window while the second lives: buffers move there and back.
+    Scene third(mapper);
+    third.Render();
+    EXPECT_GT(third.CountForeground(), 1000);
+    second.Render();
+    EXPECT_GT(second.CountForeground(), 1000);
+    EXPECT_EQ(mapper->GetVertexBufferBuildCount(), builds + 3);
+  }
+  // A mapper deleted while its window lives frees its buffers in that window.
+  {
+    vtkNew<vtkMultiresolutionPolyDataMapper> temporary;
+    temporary->SetInputDataObject(data.Input);
+    second.Actor->SetMapper(temporary);
+    second.Render();
+    EXPECT_GT(second.CountForeground(), 1000);
+    second.Actor->SetMapper(mapper);
+  }
+  second.Render();
+  EXPECT_GT(second.CountForeground(), 1000);
+}
+
+TEST(MultiresolutionMapper, CellPickerReportsFlatIndexAndLeafCell)
+{
+  NestedScene data;
+  vtkNew<vtkMultiresolutionPolyDataMapper> mapper;
+  mapper->SetInputDataObject(data.Input);
+  Scene scene(mapper);
+  scene.SetCamera(0, 0, 5);
+  scene.Render();
+
+  vtkNew<vtkCellPicker> picker;
+  picker->SetTolerance(0.0);
+  for (vtkIdType object : { vtkIdType(0), vtkIdType(2), vtkIdType(3) })
+  {
+    // Aim at the centre of the leaf's triangle that faces the camera most directly.
+    vtkPolyData* leaf = data.Leaves[object];
+    vtkIdType target = -1;
+    double best = -1.0, aim[3] = { 0, 0, 0 };
+    for (vtkIdType c = 0; c < leaf->GetNumberOfPolys(); ++c)
+    {
+      vtkIdType npts;
+      const vtkIdType* ids;
+      leaf->GetPolys()->GetCellAtId(c, npts, ids);
+      double p[3][3];
+      for (int k = 0; k < 3; ++k)
+      {
+        leaf->GetPoint(ids[k], p[k]);
+      }
+      const double u[3] = { p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2] };
+      const double v[3] = { p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2] };
+      const double nz = u[0] * v[1] - u[1] * v[0];
+      const double length = std::sqrt(
+        std::pow(u[1] * v[2] - u[2] * v[1], 2) + std::pow(u[2] * v[0] - u[0] * v[2], 2) + nz * nz);
+      if (length > 0 && nz / length > best)
+      {
+        best = nz / length;
+        target = c;
+        for (int k = 0; k < 3; ++k)
+        {
+          aim[k] = (p[0][k] + p[1][k] + p[2][k]) / 3.0;
+        }
+      }
+    }
+    ASSERT_GE(target, 0);
+    scene.Renderer->SetWorldPoint(aim[0], aim[1], aim[2], 1.0);
+    scene.Renderer->WorldToDisplay();
+    double display[3];
+    scene.Renderer->GetDisplayPoint(display); // a copy: picking moves the renderer's
+    ASSERT_TRUE(picker->Pick(display[0], display[1], 0.0, scene.Renderer));
+    EXPECT_EQ(picker->GetActor(), scene.Actor.GetPointer());
+    EXPECT_EQ(
+      picker->GetFlatBlockIndex(), static_cast<vtkIdType>(mapper->GetObjectFlatIndex(object)));
+    EXPECT_EQ(picker->GetDataSet(), leaf);
+    // Display coordinates are rounded to pixels: the hit is the aimed cell or
+    // lies within a pixel of its centre.
+    const double* hit = picker->GetPickPosition();
+    EXPECT_NEAR(hit[0], aim[0], 0.02);
+    EXPECT_NEAR(hit[1], aim[1], 0.02);
+    EXPECT_EQ(picker->GetCellId(), target) << "object " << object;
+
+    // Hardware prop picking (vtkHardwareSelector) finds the actor.
+    vtkNew<vtkPropPicker> propPicker;
+    ASSERT_TRUE(propPicker->Pick(display[0], display[1], 0.0, scene.Renderer))
+      << "object " << object << " at " << display[0] << ", " << display[1];
+    EXPECT_EQ(propPicker->GetActor(), scene.Actor.GetPointer());
+  }
+}
+
+//------------------------------------------------------------------------------
+// Image baselines: nine TOMs at pinned resolutions, normal colors and the resolution map.
+namespace
+{
+vtkSmartPointer<vtkMultiBlockDataSet> GridInput()
+{
+  static vtkSmartPointer<vtkMultiBlockDataSet> grid;
+  if (!grid)
+  {
+    grid = vtkSmartPointer<vtkMultiBlockDataSet>::New();
+    grid->SetNumberOfBlocks(9);
+    for (unsigned int i = 0; i < 9; ++i)
+    {
+      const double x = 1.1 * (static_cast<int>(i % 3) - 1);
+      const double y = 1.1 * (1 - static_cast<int>(i / 3));
+      grid->SetBlock(i, MakeTOM(0.5, 48 + 8 * (i % 3), 32 + 6 * (i / 3), x, y, 0, 6.0 + i));
+    }
+  }
+  return grid;
+}
+
+const double GridResolutions[9] = { 1.0, 0.5, 0.25, 0.1, 0.05, 0.75, 0.3, 0.15, 0.02 };
+
+std::string RenderGrid(const double* resolutions, bool map, const std::string& name)
+{
+  vtkNew<vtkMultiresolutionPolyDataMapper> mapper;
+  mapper->SetInputDataObject(GridInput());
+  mapper->UpdateObjects();
+  mapper->SetObjectResolutions(resolutions, 9);
+  mapper->SetColorByResolution(map);
+  Scene scene(mapper);
+  scene.Actor->GetProperty()->SetInterpolationToFlat();
+  scene.SetCamera(0.4, 0.5, 7.0);
+  const std::string path = OutputPath(name);
+  scene.Save(path);
+  EXPECT_EQ(mapper->GetNumberOfDrawCalls(), 1);
+  return path;
+}
+
+void CheckBaseline(const std::string& image, const std::string& name)
+{
+  const std::string baseline = BaselinePath(name);
+  if (UpdatingBaselines())
+  {
+    std::ifstream src(image, std::ios::binary);
+    std::ofstream dst(baseline, std::ios::binary);
+    dst << src.rdbuf();
+  }
+  const auto result = tt::CompareImages(image, baseline, PixelThreshold);
+  EXPECT_TRUE(tt::Passes(result, Tolerance)) << name << ": " << tt::Describe(result) << " (image "
+                                             << image << ", baseline " << baseline << ")";
+}
+}
+
+TEST(MultiresolutionMapperBaseline, GridOfNineObjects)
+{
+  CheckBaseline(RenderGrid(GridResolutions, false, "Grid"), "Grid");
+}
+
+TEST(MultiresolutionMapperBaseline, GridResolutionMap)
+{
+  CheckBaseline(RenderGrid(GridResolutions, true, "GridResolutionMap"), "GridResolutionMap");
+}
+
+TEST(MultiresolutionMapperBaseline, OtherResolutionsFailTheThresholds)
+{
+  double other[9];
+  for (int i = 0; i < 9; ++i)
+  {
+    other[i] = GridResolutions[(i + 1) % 9];
+  }
+  const std::string image = RenderGrid(other, false, "GridOtherResolutions");
+  const auto result = tt::CompareImages(image, BaselinePath("Grid"), PixelThreshold);
+  ASSERT_TRUE(result.Loaded) << result.Message;
+  EXPECT_FALSE(tt::Passes(result, Tolerance)) << tt::Describe(result);
+  const std::string map = RenderGrid(other, true, "GridOtherResolutionMap");
+  const auto mapResult = tt::CompareImages(map, BaselinePath("GridResolutionMap"), PixelThreshold);
+  ASSERT_TRUE(mapResult.Loaded) << mapResult.Message;
+  EXPECT_FALSE(tt::Passes(mapResult, Tolerance)) << tt::Describe(mapResult);
+}
+
+TEST(MultiresolutionMapperBaseline, ResolutionMapFollowsResolutionsAndTurnsOff)
+{
+  vtkNew<vtkMultiresolutionPolyDataMapper> mapper;
+  mapper->SetInputDataObject(GridInput());
+  mapper->UpdateObjects();
+  mapper->SetObjectResolutions(GridResolutions, 9);
+  Scene scene(mapper);
+  scene.Actor->GetProperty()->SetInterpolationToFlat();
+  scene.SetCamera(0.4, 0.5, 7.0);
+  const std::string normal = OutputPath("MapToggle_normal");
+  scene.Save(normal);
+
+  // Map on with other resolutions first, then the pinned ones: only the
+  // colors of changed objects are rewritten, and the result is the baseline.
+  double other[9];
+  for (int i = 0; i < 9; ++i)
+  {
+    other[i] = GridResolutions[(i + 4) % 9];
+  }
+  mapper->SetObjectResolutions(other, 9);
+  mapper->ColorByResolutionOn();
+  scene.Render();
+  const vtkIdType vertexBuilds = mapper->GetVertexBufferBuildCount();
+  const vtkMTimeType positions = mapper->GetVertexBufferUploadTime("vertexMC");
+  const vtkMTimeType colors = mapper->GetVertexBufferUploadTime("scalarColor");
+  ASSERT_GT(colors, 0u);
+  mapper->SetObjectResolutions(GridResolutions, 9);
+  const std::string map = OutputPath("MapToggle_map");
+  scene.Save(map);
+  EXPECT_EQ(mapper->GetVertexBufferBuildCount(), vertexBuilds);
+  EXPECT_EQ(mapper->GetVertexBufferUploadTime("vertexMC"), positions);
+  // Changed objects' colors went in place (glBufferSubData), not as a new upload.
+  EXPECT_EQ(mapper->GetVertexBufferUploadTime("scalarColor"), colors);
+  const auto mapResult = tt::CompareImages(map, BaselinePath("GridResolutionMap"), PixelThreshold);
+  EXPECT_TRUE(tt::Passes(mapResult, Tolerance)) << tt::Describe(mapResult);
+
+  // Off again: normal colors, exactly.
+  mapper->ColorByResolutionOff();
+  const std::string back = OutputPath("MapToggle_back");
+  scene.Save(back);
+  const auto backResult = tt::CompareImages(back, normal, 0.0);
+  ASSERT_TRUE(backResult.Loaded) << backResult.Message;
+  EXPECT_EQ(backResult.MaxError, 0.0) << tt::Describe(backResult);
+}
+
+TEST(MultiresolutionMapperBaseline, OneObjectMatchesTheTOMMapper)
+{
+  auto tom = MakeTOM(1.0, 120, 90);
+  for (double r : { 1.0, 0.25, 0.05 })
+  {
+    vtkNew<vtkMultiresolutionPolyDataMapper> multi;
+    vtkNew<vtkMultiBlockDataSet> blocks;
+    blocks->SetNumberOfBlocks(1);
+    blocks->SetBlock(0, tom);
+    multi->SetInputDataObject(blocks);
+    multi->UpdateObjects();
+    multi->SetResolution(r);
+    Scene multiScene(multi);
+    multiScene.Actor->GetProperty()->SetInterpolationToFlat();
+    const std::string multiImage =
+      OutputPath("OneObject_multires_r" + std::to_string(int(100 * r)));
+    multiScene.Save(multiImage);
+
+    vtkNew<vtkTOMPolyDataMapper> single;
+    single->SetInputData(tom);
+    single->SetResolution(r);
+    Scene singleScene(single);
+    singleScene.Actor->GetProperty()->SetInterpolationToFlat();
+    const std::string singleImage = OutputPath("OneObject_tom_r" + std::to_string(int(100 * r)));
+    singleScene.Save(singleImage);
+
+    EXPECT_EQ(multi->GetRenderedTriangles(), single->GetRenderedTriangles());
+    const auto result = tt::CompareImages(multiImage, singleImage, PixelThreshold);
+    EXPECT_TRUE(tt::Passes(result, Tolerance)) << "r=" << r << ": " << tt::Describe(result);
+    EXPECT_EQ(result.MaxError, 0.0) << "r=" << r << ": " << tt::Describe(result);
+  }
+}
