@@ -8,6 +8,7 @@
 #include "DegradationModel.h"
 #include "FeedbackPolicy.h"
 #include "FrameCostModel.h"
+#include "FrameTimeCorrector.h"
 #include "FullResolutionPolicy.h"
 #include "GreedyLODPolicy.h"
 #include "StaticThresholdPolicy.h"
@@ -54,8 +55,8 @@ timecritical::FrameCostModel::Coefficients DefaultCoefficients()
   c.Frame = 2e-3;
   c.DrawCall = 0.3e-3;
   c.Object = 0.0;
-  c.Triangle = 1.5e-6;
-  c.Pixel = 2e-9;
+  c.Triangle = 0.2e-6;
+  c.Pixel = 5e-9;
   return c;
 }
 
@@ -70,6 +71,8 @@ struct vtkTimeCriticalRenderer::Internals
     timecritical::FrameCostModel::PixelMode::Additive };
   timecritical::CostModelCalibrator Calibrator{ FeatureCount,
     timecritical::CostModelCalibrator::Options(), FeatureScales };
+  timecritical::FrameTimeCorrector Corrector;
+  double RawPrediction = NaN; // the model's prediction of the pending frame, uncorrected
   timecritical::DegradationModel Degradation;
   timecritical::ActiveSetPolicy ActiveSet;
   timecritical::FullResolutionPolicy FullResolution;
@@ -330,6 +333,11 @@ double vtkTimeCriticalRenderer::GetPixelCost() const
   return this->Internal->Model.GetCoefficients().Pixel;
 }
 
+double vtkTimeCriticalRenderer::GetCostModelResidual() const
+{
+  return this->Internal->Calibrator.GetResidualScale();
+}
+
 void vtkTimeCriticalRenderer::SetCostMargin(double seconds)
 {
   if (!(seconds >= 0.0) || !std::isfinite(seconds))
@@ -436,6 +444,7 @@ void vtkTimeCriticalRenderer::OnWindowEnd()
   this->MeasuredFrameTime = Seconds(in.FrameStart, Clock::now());
   if (this->OnlineCalibration)
   {
+    in.Corrector.Update(in.RawPrediction, this->MeasuredFrameTime);
     if (in.Calibrator.Update(in.Features.data(), this->MeasuredFrameTime))
     {
       in.StoreCoefficients();
@@ -678,6 +687,7 @@ void vtkTimeCriticalRenderer::MeasureObjects()
     }
   }
   this->NumberOfCulledObjects = culled;
+  this->CoveredPixels = in.TotalPixels;
   in.Load.Objects = static_cast<double>(in.ObjectActor.size() - static_cast<std::size_t>(culled));
 }
 
@@ -721,10 +731,14 @@ void vtkTimeCriticalRenderer::ChooseResolutions(bool still)
     in.Coarsest[o] = std::isfinite(in.Coarsest[o]) ? in.Coarsest[o] : 1.0;
   }
   in.Degradation.Evaluate(m, in.Views.data(), in.Weight.data());
+  // The model's short-term error in this view (FrameTimeCorrector) scales
+  // every predicted time.
+  const double correction = this->OnlineCalibration ? in.Corrector.GetFactor() : 1.0;
   for (std::size_t k = 0; k < m; ++k)
   {
     const std::size_t o = in.Visible[k];
-    in.MaxTime[k] = in.Model.MaxTime(in.MaxTriangles[o]);
+    const double cold = std::isfinite(in.PreviousResolution[o]) ? 1.0 : this->NewObjectCostFactor;
+    in.MaxTime[k] = correction * cold * in.Model.MaxTime(in.MaxTriangles[o]);
     in.MinResolution[k] = in.Model.MinimumResolution(in.MaxTriangles[o], in.Pixels[o], in.Coarsest[o]);
   }
 
@@ -743,7 +757,7 @@ void vtkTimeCriticalRenderer::ChooseResolutions(bool still)
   }
   timecritical::FrameCostModel::FrameLoad load = in.Load;
   load.DrawCalls += mapperCalls;
-  const double fixed = in.Model.FixedTime(load, in.TotalPixels);
+  const double fixed = correction * in.Model.FixedTime(load, in.TotalPixels);
 
   timecritical::PolicyInput input;
   input.Count = m;
@@ -754,7 +768,11 @@ void vtkTimeCriticalRenderer::ChooseResolutions(bool still)
   input.MaxTriangles = in.VisibleTriangles.data();
   input.Previous = anyPrevious ? in.Previous.data() : nullptr;
   input.Alpha = in.Degradation.GetAlpha();
-  input.TargetFrameTime = this->TargetFrameTime;
+  // Plan for predicted + k sigma <= target; the prediction itself stays unbiased.
+  this->SafetyMargin = this->OnlineCalibration
+    ? std::min(this->SafetyFactor * in.Corrector.GetRelativeSpread(), 0.5) * this->TargetFrameTime
+    : 0.0;
+  input.TargetFrameTime = this->TargetFrameTime - this->SafetyMargin;
   input.FixedTime = fixed;
   input.LastFrameTime = this->MeasuredFrameTime;
 
@@ -762,6 +780,7 @@ void vtkTimeCriticalRenderer::ChooseResolutions(bool still)
     still ? &in.FullResolution : in.GetPolicy(this->Policy);
   const timecritical::PolicyResult result = policy->Select(input, in.Chosen.data());
   this->PredictedFrameTime = result.PredictedFrameTime;
+  in.RawPrediction = result.PredictedFrameTime / correction;
   this->FixedFrameTime = fixed;
   this->OptimizationTime = result.Seconds;
   this->OptimizationIterations = result.Iterations;
@@ -836,12 +855,19 @@ void vtkTimeCriticalRenderer::RunCalibration()
   vtkCamera* camera = this->GetActiveCamera();
   const double savedAngle = camera->GetViewAngle();
   const double savedScale = camera->GetParallelScale();
-  const double zooms[] = { 1.0, 1.8 };
-  const double triangleTargets[] = { 0.0, 25e3, 60e3, 120e3, 240e3 };
-  constexpr std::size_t MaxSamples = 2 * 5;
+  // Zooming out and in varies the objects in view and their coverage, so that
+  // the fixed, per-object and fill terms can be told apart from the triangles.
+  const double zooms[] = { 1.0, 0.7, 1.8 };
+  // Fractions of the largest triangle count measured, largest first: every
+  // buffer then grows once, in the warm-up, and no sample pays for first use.
+  const double fractions[] = { 1.0, 0.55, 0.25, 0.08, 0.0 };
+  constexpr std::size_t MaxSamples = 3 * 5;
   double x[MaxSamples * FeatureCount];
   double times[MaxSamples];
   std::size_t samples = 0;
+  // Up to twice what the target affords at the current per-triangle cost.
+  const double triangleCost = std::max(in.Model.GetCoefficients().Triangle, 1e-9);
+  const double affordable = 2.0 * this->TargetFrameTime / triangleCost;
   bool warmedUp = false;
 
   for (double zoom : zooms)
@@ -859,9 +885,10 @@ void vtkTimeCriticalRenderer::RunCalibration()
     {
       continue;
     }
-    for (double triangles : triangleTargets)
+    const double largest = std::min(visibleTriangles, affordable);
+    for (double fraction : fractions)
     {
-      const double r = std::min(1.0, triangles / visibleTriangles);
+      const double r = std::min(1.0, fraction * largest / visibleTriangles);
       for (std::size_t o = 0; o < in.ObjectActor.size(); ++o)
       {
         in.Resolution[o] = in.Culled[o] ? 0.0 : std::max(r, 1e-9);
@@ -871,15 +898,19 @@ void vtkTimeCriticalRenderer::RunCalibration()
         entry.Mapper->SetObjectResolutions(
           in.Resolution.data() + entry.First, static_cast<vtkIdType>(entry.Count));
       }
-      // The first render uploads the vertex buffers: not a representative frame.
-      for (int repeat = warmedUp ? 1 : 2; repeat > 0; --repeat)
+      // The fastest of two renders (three for the first, which uploads the
+      // vertex buffers and grows the index buffer): scheduling noise only adds.
+      double best = HUGE_VAL;
+      for (int repeat = warmedUp ? 2 : 3; repeat > 0; --repeat)
       {
         const auto start = Clock::now();
         this->Superclass::DeviceRender();
         glFinish();
-        times[samples] = Seconds(start, Clock::now());
+        const double t = Seconds(start, Clock::now());
+        best = warmedUp || repeat < 3 ? std::min(best, t) : best;
       }
       warmedUp = true;
+      times[samples] = best;
       this->FinishFrame();
       std::copy(in.Features.begin(), in.Features.end(), x + samples * FeatureCount);
       ++samples;
@@ -925,6 +956,8 @@ void vtkTimeCriticalRenderer::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Cost (frame, draw call, triangle, pixel, margin): " << this->GetFrameCost()
      << ", " << this->GetDrawCallCost() << ", " << this->GetTriangleCost() << ", "
      << this->GetPixelCost() << ", " << this->GetCostMargin() << "\n";
+  os << indent << "SafetyFactor: " << this->SafetyFactor << "\n";
+  os << indent << "NewObjectCostFactor: " << this->NewObjectCostFactor << "\n";
   os << indent << "PredictedFrameTime: " << this->PredictedFrameTime << "\n";
   os << indent << "MeasuredFrameTime: " << this->MeasuredFrameTime << "\n";
   os << indent << "OptimizationTime: " << this->OptimizationTime << "\n";

@@ -190,9 +190,36 @@ public:
   ///@}
 
   ///@{
+  /**
+   * Safety factor k: the optimizer plans for predicted + k sigma <= target,
+   * sigma the recent relative spread of measured / predicted times (with
+   * OnlineCalibration; none without),
+   * so that frames miss the target rarely rather than half the time (the
+   * paper's "worst case estimate"). The reported prediction stays unbiased.
+   * Default 1.5; 0 plans to the target itself.
+   */
+  vtkSetClampMacro(SafetyFactor, double, 0.0, 10.0);
+  vtkGetMacro(SafetyFactor, double);
+  ///@}
+
+  ///@{
+  /**
+   * Cost multiplier, for one frame, of objects that were not drawn in the
+   * previous frame (newly visible, or back from culling). Data that was not
+   * touched for a while is slower to draw the first time (caches, memory the
+   * system reclaimed): on this project's machines a sudden turn to a view of
+   * new objects costs about twice as much in its first frame. Default 2; 1
+   * treats them like the others.
+   */
+  vtkSetClampMacro(NewObjectCostFactor, double, 1.0, 10.0);
+  vtkGetMacro(NewObjectCostFactor, double);
+  ///@}
+
+  ///@{
   /// Statistics of the last frame.
   vtkGetMacro(PredictedFrameTime, double);
   vtkGetMacro(FixedFrameTime, double);       ///< t_fixed of the prediction
+  vtkGetMacro(SafetyMargin, double);         ///< k sigma kept free of the target
   vtkGetMacro(MeasuredFrameTime, double);    ///< last completed frame (NaN before any)
   vtkGetMacro(OptimizationTime, double);     ///< seconds spent in the policy
   vtkGetMacro(HeuristicsTime, double);       ///< seconds spent culling and measuring
@@ -202,6 +229,8 @@ public:
   vtkGetMacro(ObjectTrianglesDrawn, vtkIdType); ///< triangles of the multiresolution objects
   vtkGetMacro(NumberOfObjects, vtkIdType);
   vtkGetMacro(NumberOfCulledObjects, vtkIdType);
+  vtkGetMacro(CoveredPixels, double); ///< projected pixels of the visible objects (sum)
+  double GetCostModelResidual() const; ///< robust scale of the prediction residuals (s)
   vtkGetMacro(LastRenderWasStill, bool);
   vtkIdType GetObjectTriangles(vtkIdType object) const;  ///< -1 for a bad index
   double GetObjectResolution(vtkIdType object) const;     ///< 0 when culled, NaN for a bad index
@@ -232,9 +261,12 @@ protected:
   bool AutomaticCalibration = true;
   bool OnlineCalibration = true;
   bool Calibrated = false;
+  double SafetyFactor = 1.5;
+  double NewObjectCostFactor = 2.0;
 
   double PredictedFrameTime = 0.0;
   double FixedFrameTime = 0.0;
+  double SafetyMargin = 0.0;
   double MeasuredFrameTime;
   double OptimizationTime = 0.0;
   double HeuristicsTime = 0.0;
@@ -244,6 +276,7 @@ protected:
   vtkIdType ObjectTrianglesDrawn = 0;
   vtkIdType NumberOfObjects = 0;
   vtkIdType NumberOfCulledObjects = 0;
+  double CoveredPixels = 0.0;
   bool LastRenderWasStill = false;
 
 private:

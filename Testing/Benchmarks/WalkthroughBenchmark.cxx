@@ -168,6 +168,10 @@ struct Settings
   std::string DataDirectory = TIMECRITICAL_SHARED_DATA_DIR;
   std::vector<const PolicyInfo*> Policies;
   bool Plot = true;
+  /// Reddy's velocity and eccentricity factors (perceptual, not what PSNR rewards).
+  bool Perceptual = true;
+  double SafetyFactor = 1.5;
+  int Family = vtkTimeCriticalRenderer::HITCHNER;
 };
 
 void PrintUsage()
@@ -185,7 +189,11 @@ void PrintUsage()
        "  --json FILE     JSON file (default DIR/walkthrough.json)\n"
        "  --data DIR      folder with cow.obj (default " TIMECRITICAL_SHARED_DATA_DIR ")\n"
        "  --seed N        seed of the object placement (default 20001)\n"
-       "  --no-plot       do not run scripts/plot_walkthrough.py\n";
+       "  --no-plot       do not run scripts/plot_walkthrough.py\n"
+       "  --no-perceptual TimeCritical without Reddy's velocity and eccentricity factors\n"
+       "  --safety K      TimeCritical's safety factor (default 1.5)\n"
+       "  --family N      degradation family: 0 Hitchner (default), 1 Funkhouser,\n"
+       "                  2 Gobbetti-Bouvier 1999, 3 Yang-Gu-Kang\n";
 }
 
 Settings ParseArguments(int argc, char* argv[])
@@ -271,6 +279,18 @@ Settings ParseArguments(int argc, char* argv[])
     else if (arg == "--no-plot")
     {
       settings.Plot = false;
+    }
+    else if (arg == "--no-perceptual")
+    {
+      settings.Perceptual = false;
+    }
+    else if (arg == "--safety")
+    {
+      settings.SafetyFactor = std::stod(value());
+    }
+    else if (arg == "--family")
+    {
+      settings.Family = std::stoi(value());
     }
     else
     {
@@ -609,13 +629,14 @@ Scene PlaceObjects(const Settings& settings, vtkPolyData* tom, vtkIdType triangl
       }
     }
   }
-  // B focuses on the object nearest to a fifth of the diagonal, so that the
-  // sudden turn at B looks across most of the herd.
+  // B focuses on an object in the herd's south-west part: seen from A's side
+  // it has a few dozen others behind it, and the sudden turn at B looks along
+  // the herd's diagonal, across most of it.
   double best = std::numeric_limits<double>::infinity();
   for (size_t n = 0; n < scene.Objects.size(); ++n)
   {
     const double d = std::hypot(
-      scene.Objects[n].X - 0.196 * scene.Extent, scene.Objects[n].Z - 0.196 * scene.Extent);
+      scene.Objects[n].X - 0.30 * scene.Extent, scene.Objects[n].Z - 0.25 * scene.Extent);
     if (d < best)
     {
       best = d;
@@ -694,9 +715,10 @@ public:
     // A: outside the herd beyond one corner and high up: the whole herd in view.
     this->A = this->Center + Vec3{ 1.115 * L, 0.932 * L, -1.121 * L };
     // B: about four footprint radii from the focus object on A's side, above
-    // it: the object fills half the view, a few neighbours the background.
+    // it: the object fills a third of the view, a few dozen others the
+    // background (full resolution costs about 1/17 of A there).
     const Vec3 towardA = Normalized(Vec3{ this->A.X - this->Target.X, 0.0, this->A.Z - this->Target.Z });
-    this->B = this->Target + towardA * (4.4 * r) + Vec3{ 0.0, 3.3 * r, 0.0 };
+    this->B = this->Target + towardA * (4.4 * r) + Vec3{ 0.0, 2.5 * r, 0.0 };
     // The sudden turn: from looking down at the object to looking along the
     // herd's diagonal, slightly downward: near objects large, hundreds behind.
     this->TurnDirection = Normalized(Vec3{ 1.0, -0.12, 1.0 });
@@ -1121,6 +1143,10 @@ vtkSmartPointer<vtkTimeCriticalRenderer> Walkthrough::MakeTimeCriticalRenderer(i
   renderer->SetActiveCamera(this->Camera);
   SetBackground(renderer);
   renderer->SetTargetFrameTime(this->Options.Target);
+  renderer->SetUseVelocity(this->Options.Perceptual);
+  renderer->SetUseEccentricity(this->Options.Perceptual);
+  renderer->SetSafetyFactor(this->Options.SafetyFactor);
+  renderer->SetDegradationFamily(this->Options.Family);
   renderer->SetPolicy(policy);
   if (std::isfinite(this->Coefficients[0]))
   {
@@ -1617,7 +1643,9 @@ void WriteJson(const Settings& settings, const ObjectMesh& object, const Scene& 
       << ", \"lodprop3d_warmup_frames\": " << settings.LODWarmupFrames << ", \"seed\": "
       << settings.Seed << ", \"window\": [" << WindowSize << ", " << WindowSize
       << "], \"view_angle\": " << ViewAngle << ", \"psnr_cap\": " << PSNRCap
-      << ", \"load_average_start\": " << Number(load[0], 3) << ", \"load_average_end\": "
+      << ", \"perceptual\": " << (settings.Perceptual ? "true" : "false")
+      << ", \"safety_factor\": " << Number(settings.SafetyFactor) << ", \"degradation_family\": "
+      << settings.Family << ", \"load_average_start\": " << Number(load[0], 3) << ", \"load_average_end\": "
       << Number(load[1], 3) << "},\n";
   out << "  \"scene\": {\"mesh\": " << Quoted(object.Source) << ", \"substitute\": "
       << (object.Substitute ? "true" : "false") << ", \"triangles_per_object\": "

@@ -128,6 +128,7 @@ struct Scene
     this->Renderer->AutomaticCalibrationOff();
     this->Renderer->OnlineCalibrationOff();
     this->Renderer->SetCostCoefficients(2e-3, 0.0, triangleCost, 0.0);
+    this->Renderer->SetNewObjectCostFactor(1.0);
   }
 
   vtkIdType TotalTriangles() const
@@ -212,6 +213,21 @@ TEST(TimeCriticalRenderer, KeepsThePredictedTimeWithinTheTarget)
   scene.Renderer->SetTargetFrameTime(10.0);
   scene.Window->Render();
   EXPECT_EQ(scene.Renderer->GetObjectTrianglesDrawn(), total);
+}
+
+TEST(TimeCriticalRenderer, NewlyVisibleObjectsArePlannedAtAHigherCost)
+{
+  Scene scene(SphereGrid(3));
+  scene.PinCosts(1e-6);
+  scene.Renderer->SetNewObjectCostFactor(2.0);
+  const double variable = 1e-6 * 0.3 * static_cast<double>(scene.TotalTriangles());
+  scene.Renderer->SetTargetFrameTime(0.002 + variable);
+  scene.Window->Render(); // every object is new: half the triangles of a warm frame
+  const vtkIdType cold = scene.Renderer->GetObjectTrianglesDrawn();
+  scene.Window->Render();
+  const vtkIdType warm = scene.Renderer->GetObjectTrianglesDrawn();
+  EXPECT_NEAR(static_cast<double>(cold), 0.5 * static_cast<double>(warm), 0.03 * static_cast<double>(warm));
+  EXPECT_LE(scene.Renderer->GetPredictedFrameTime(), scene.Renderer->GetTargetFrameTime() * (1 + 1e-9));
 }
 
 TEST(TimeCriticalRenderer, MeasuresFrameTimes)
