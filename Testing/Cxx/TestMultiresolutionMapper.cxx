@@ -15,9 +15,7 @@
 #include "vtkTOMFieldData.h"
 #include "vtkTOMPolyDataMapper.h"
 
-#ifdef TIMECRITICAL_HAVE_ALLOCATION_COUNTER
 #include "AllocationCounter.h"
-#endif
 
 #include "vtkActor.h"
 #include "vtkCallbackCommand.h"
@@ -502,7 +500,6 @@ TEST(MultiresolutionMapper, ResolutionChangesRewriteOnlyTheIndexBuffer)
   EXPECT_EQ(mapper->GetVertexBufferUploadTime("normalMC"), normals);
 }
 
-#ifdef TIMECRITICAL_HAVE_ALLOCATION_COUNTER
 TEST(MultiresolutionMapper, ResolutionChangesDoNotAllocate)
 {
   NestedScene data;
@@ -526,7 +523,6 @@ TEST(MultiresolutionMapper, ResolutionChangesDoNotAllocate)
   EXPECT_EQ(mapper->GetIndexBufferBuildCount(), indexBuilds + 1);
   EXPECT_LE(changedFrame, plainFrame);
 }
-#endif
 
 TEST(MultiresolutionMapper, ZeroResolutionCullsAndBadValuesAreErrors)
 {
