@@ -31,7 +31,7 @@ public:
   struct Options
   {
     double Gain = 0.3;           ///< weight of a new sample in the factor (0: never corrects)
-    double InitialSpread = 0.05; ///< relative spread assumed before MinimumSamples
+    double InitialSpread = 0.15; ///< relative spread assumed before MinimumSamples (cautious)
     double MinimumClamp = 0.25;  ///< smallest clamp of a sample's log ratio
     double MaxLogFactor = 1.0;   ///< |log factor| never exceeds this (e^1 = 2.7x)
   };

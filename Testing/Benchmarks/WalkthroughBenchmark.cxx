@@ -1032,6 +1032,17 @@ public:
   void Calibrate();
   PolicyRun Run(const PolicyInfo& policy);
   void WriteResolutionMaps();
+  void MeasureNoiseFloor();
+
+  /// The same frame rendered again and again: how much frame times vary with
+  /// nothing in the scene changing (the floor under any policy's CV).
+  struct NoiseFloor
+  {
+    int Frames = 0;
+    vtkIdType Triangles = 0;
+    double Median = NaN, Mean = NaN, Max = NaN, CV = NaN;
+    double ShareOver10Percent = NaN; ///< frames more than 10% slower than the median
+  } Noise;
 
   std::vector<Image> Reference;
   Checks Check;
@@ -1455,6 +1466,46 @@ void Walkthrough::WriteResolutionMaps()
   this->Current = nullptr;
 }
 
+void Walkthrough::MeasureNoiseFloor()
+{
+  // Three quarters along the path (backing away: many objects in view), every
+  // object at one resolution, with a plain renderer so nothing re-chooses.
+  vtkNew<vtkRenderer> plain;
+  plain->AddActor(this->Actor);
+  plain->SetActiveCamera(this->Camera);
+  SetBackground(plain);
+  this->Use(plain);
+  ApplyPose(this->Camera, this->Path.At((3 * this->Options.Frames) / 4));
+  plain->ResetCameraClippingRange(const_cast<double*>(this->Layout.Bounds));
+  this->Mapper->SetResolution(0.2);
+  const int warmup = 5, frames = this->Options.Quick ? 10 : 40;
+  std::vector<double> times;
+  for (int f = 0; f < warmup + frames; ++f)
+  {
+    const double t = this->TimedRender();
+    if (f >= warmup)
+    {
+      times.push_back(t);
+    }
+  }
+  this->Noise.Frames = frames;
+  this->Noise.Triangles = this->Mapper->GetRenderedTriangles();
+  this->Noise.Median = MedianOf(times);
+  this->Noise.Mean = Mean(times);
+  this->Noise.Max = *std::max_element(times.begin(), times.end());
+  double variance = 0.0;
+  int slow = 0;
+  for (double t : times)
+  {
+    variance += (t - this->Noise.Mean) * (t - this->Noise.Mean);
+    slow += t > 1.1 * this->Noise.Median ? 1 : 0;
+  }
+  this->Noise.CV = std::sqrt(variance / frames) / this->Noise.Mean;
+  this->Noise.ShareOver10Percent = static_cast<double>(slow) / frames;
+  this->Window->RemoveRenderer(plain);
+  this->Current = nullptr;
+}
+
 //------------------------------------------------------------------------------
 // Output
 
@@ -1671,6 +1722,11 @@ void WriteJson(const Settings& settings, const ObjectMesh& object, const Scene& 
       << Number(walk.Coefficients[1]) << ", \"triangle\": " << Number(walk.Coefficients[2])
       << ", \"pixel\": " << Number(walk.Coefficients[3]) << ", \"margin\": "
       << Number(walk.Coefficients[4]) << "},\n";
+  out << "  \"noise_floor\": {\"frames\": " << walk.Noise.Frames << ", \"triangles\": "
+      << walk.Noise.Triangles << ", \"median\": " << Number(walk.Noise.Median) << ", \"mean\": "
+      << Number(walk.Noise.Mean) << ", \"max\": " << Number(walk.Noise.Max) << ", \"cv\": "
+      << Number(walk.Noise.CV) << ", \"share_over_110_percent_of_median\": "
+      << Number(walk.Noise.ShareOver10Percent) << "},\n";
   out << "  \"checks\": {\"front_buffer_equals_back_buffer\": "
       << (walk.Check.FrontEqualsBack ? "true" : "false")
       << ", \"reference_deterministic\": " << (walk.Check.Deterministic ? "true" : "false")
@@ -1847,6 +1903,8 @@ int main(int argc, char* argv[])
         walk.WriteResolutionMaps();
       }
     }
+    std::cerr << "noise floor: one frame rendered again and again...\n";
+    walk.MeasureNoiseFloor();
     if (getloadavg(sample, 3) > 0)
     {
       load[1] = sample[0];
@@ -1892,6 +1950,10 @@ int main(int argc, char* argv[])
       }
     }
     PrintTable(runs, goals, settings.Target);
+    std::printf("\nnoise floor (the same frame, %lld triangles, rendered %d times): median %.1f ms, "
+                "max %.1f ms, CV %.1f%%, %.0f%% of the frames more than 10%% over the median\n",
+      static_cast<long long>(walk.Noise.Triangles), walk.Noise.Frames, 1000.0 * walk.Noise.Median,
+      1000.0 * walk.Noise.Max, 100.0 * walk.Noise.CV, 100.0 * walk.Noise.ShareOver10Percent);
     WriteJson(settings, object, scene, path, walk, runs, goals, load);
     std::printf("\nJSON: %s, images in %s\n", settings.Json.c_str(), settings.Output.c_str());
     std::fflush(stdout);

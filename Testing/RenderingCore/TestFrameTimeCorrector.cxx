@@ -19,7 +19,7 @@ TEST(FrameTimeCorrector, StartsNeutral)
   FrameTimeCorrector corrector;
   EXPECT_DOUBLE_EQ(corrector.GetFactor(), 1.0);
   EXPECT_DOUBLE_EQ(corrector.Correct(0.08), 0.08);
-  EXPECT_DOUBLE_EQ(corrector.GetRelativeSpread(), 0.05);
+  EXPECT_DOUBLE_EQ(corrector.GetRelativeSpread(), 0.15);
   EXPECT_EQ(corrector.GetSampleCount(), 0);
 }
 
