@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkMultiresolutionPolyDataMapper.h"
 
+#include "TOMIndexLayout.h"
 #include "TOMMesh.h"
 #include "TOMTraversal.h"
 #include "vtkTOMFieldData.h"
@@ -946,28 +947,13 @@ void vtkMultiresolutionPolyDataMapper::FillIndexBuffer(vtkRenderer* ren, vtkActo
       {
         triangles = traversal.Extract(
           vertexCount, in.Scratch.data(), static_cast<uint32_t>(in.Scratch.size() / 3));
-        for (uint32_t t = 0; t < triangles; ++t)
-        {
-          const uint32_t a = in.Scratch[3 * t] + base;
-          const uint32_t b = in.Scratch[3 * t + 1] + base;
-          const uint32_t c = in.Scratch[3 * t + 2] + base;
-          uint32_t* edge = indices + n + 6 * static_cast<size_t>(t);
-          edge[0] = a;
-          edge[1] = b;
-          edge[2] = b;
-          edge[3] = c;
-          edge[4] = c;
-          edge[5] = a;
-        }
+        timecritical::WriteTriangleEdges(in.Scratch.data(), triangles, base, indices + n);
         n += 6 * static_cast<size_t>(triangles);
       }
       else if (representation == VTK_POINTS && !corners)
       {
         triangles = traversal.Extract(vertexCount, nullptr, 0); // counts only
-        for (uint32_t v = 0; v < vertexCount; ++v)
-        {
-          indices[n + v] = base + v;
-        }
+        timecritical::WriteVertexRange(vertexCount, base, indices + n);
         n += vertexCount;
       }
       else
@@ -1037,10 +1023,9 @@ void vtkMultiresolutionPolyDataMapper::FillIndexBuffer(vtkRenderer* ren, vtkActo
     }
     if (vertexVisibility)
     {
-      for (vtkIdType v = 0; v < object.RenderedVertices; ++v)
-      {
-        in.VertexIndices[vertexIndices++] = base + static_cast<uint32_t>(v);
-      }
+      const auto count = static_cast<size_t>(object.RenderedVertices);
+      timecritical::WriteVertexRange(count, base, in.VertexIndices.data() + vertexIndices);
+      vertexIndices += count;
     }
     this->RenderedTriangles += object.RenderedTriangles;
     this->RenderedVertices += object.RenderedVertices;

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkTOMPolyDataMapper.h"
 
+#include "TOMIndexLayout.h"
 #include "TOMMesh.h"
 #include "TOMTraversal.h"
 #include "vtkTOMFieldData.h"
@@ -114,27 +115,14 @@ void vtkTOMPolyDataMapper::UploadResolution(vtkActor* act)
   if (representation == VTK_WIREFRAME)
   {
     in.Expanded.resize(std::max(in.Expanded.size(), 6 * static_cast<size_t>(triangles)));
-    for (size_t t = 0; t < triangles; ++t)
-    {
-      const uint32_t* tri = data + 3 * t;
-      uint32_t* edges = in.Expanded.data() + 6 * t;
-      edges[0] = tri[0];
-      edges[1] = tri[1];
-      edges[2] = tri[1];
-      edges[3] = tri[2];
-      edges[4] = tri[2];
-      edges[5] = tri[0];
-    }
+    timecritical::WriteTriangleEdges(data, triangles, 0, in.Expanded.data());
     data = in.Expanded.data();
     count = 6 * static_cast<size_t>(triangles);
   }
   else if (representation == VTK_POINTS)
   {
     in.Expanded.resize(std::max<size_t>(in.Expanded.size(), vertexCount));
-    for (uint32_t v = 0; v < vertexCount; ++v)
-    {
-      in.Expanded[v] = v;
-    }
+    timecritical::WriteVertexRange(vertexCount, 0, in.Expanded.data());
     data = in.Expanded.data();
     count = vertexCount;
   }
