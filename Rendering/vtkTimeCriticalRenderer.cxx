@@ -19,6 +19,7 @@
 #include "vtkCommand.h"
 #include "vtkMapper.h"
 #include "vtkMatrix4x4.h"
+#include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkPolyData.h"
@@ -97,7 +98,6 @@ struct vtkTimeCriticalRenderer::Internals
     vtkActor* Actor = nullptr;
     vtkMultiresolutionPolyDataMapper* Mapper = nullptr;
     std::size_t First = 0, Count = 0; // object range
-    std::array<double, 16> Matrix{};  // box coordinates -> clip space
   };
   std::vector<ActorEntry> Actors;
   std::vector<std::pair<vtkWeakPointer<vtkActor>, double>> Importance;
@@ -128,9 +128,19 @@ struct vtkTimeCriticalRenderer::Internals
 
   // Ordinary props.
   timecritical::FrameCostModel::FrameLoad Load;
-  double OtherTriangleCount = 0.0;
   double TotalPixels = 0.0;
   double ViewportWidth = 0.0, ViewportHeight = 0.0;
+  vtkNew<vtkMatrix4x4> ObjectToClip; // per actor, reused: no allocation per frame
+
+  /// Hands Resolution (frame numbering) to every mapper.
+  void ApplyResolutions()
+  {
+    for (const auto& entry : this->Actors)
+    {
+      entry.Mapper->SetObjectResolutions(
+        this->Resolution.data() + entry.First, static_cast<vtkIdType>(entry.Count));
+    }
+  }
 
   timecritical::ResolutionPolicy* GetPolicy(int policy)
   {
@@ -537,7 +547,6 @@ void vtkTimeCriticalRenderer::GatherObjects()
   in.ObjectActor.clear();
   in.ObjectIndex.clear();
   in.Load = timecritical::FrameCostModel::FrameLoad();
-  in.OtherTriangleCount = 0.0;
 
   int size[2] = { 0, 0 }, origin[2] = { 0, 0 };
   this->GetTiledSizeAndOrigin(&size[0], &size[1], &origin[0], &origin[1]);
@@ -557,7 +566,7 @@ void vtkTimeCriticalRenderer::GatherObjects()
       vtkMapper* other = actor ? actor->GetMapper() : nullptr;
       if (auto* poly = other ? vtkPolyData::SafeDownCast(other->GetInputDataObject(0, 0)) : nullptr)
       {
-        in.OtherTriangleCount += static_cast<double>(poly->GetNumberOfPolys()) +
+        in.Load.OtherTriangles += static_cast<double>(poly->GetNumberOfPolys()) +
           static_cast<double>(poly->GetNumberOfStrips());
       }
       continue;
@@ -575,7 +584,6 @@ void vtkTimeCriticalRenderer::GatherObjects()
     }
     in.Actors.push_back(entry);
   }
-  in.Load.OtherTriangles = in.OtherTriangleCount;
 
   const std::size_t n = in.ObjectActor.size();
   this->NumberOfObjects = static_cast<vtkIdType>(n);
@@ -653,18 +661,16 @@ void vtkTimeCriticalRenderer::MeasureObjects()
 
   in.TotalPixels = 0.0;
   vtkIdType culled = 0;
-  vtkNew<vtkMatrix4x4> combined;
   for (auto& entry : in.Actors)
   {
-    vtkMatrix4x4::Multiply4x4(viewProjection, entry.Actor->GetMatrix(), combined);
-    std::copy(combined->GetData(), combined->GetData() + 16, entry.Matrix.begin());
+    vtkMatrix4x4::Multiply4x4(viewProjection, entry.Actor->GetMatrix(), in.ObjectToClip);
     auto& history = in.History[entry.Mapper];
     const bool known = history.Resolution.size() == entry.Count;
     for (std::size_t i = 0; i < entry.Count; ++i)
     {
       const std::size_t o = entry.First + i;
       const auto projection =
-        ViewHeuristics::Project(entry.Matrix.data(), in.Bounds[o].data(), width, height);
+        ViewHeuristics::Project(in.ObjectToClip->GetData(), in.Bounds[o].data(), width, height);
       in.Culled[o] = projection.Culled ? 1 : 0;
       in.Pixels[o] = projection.Pixels;
       in.CenterX[o] = projection.CenterX;
@@ -791,11 +797,7 @@ void vtkTimeCriticalRenderer::ChooseResolutions(bool still)
   {
     in.Resolution[in.Visible[k]] = in.Chosen[k];
   }
-  for (const auto& entry : in.Actors)
-  {
-    entry.Mapper->SetObjectResolutions(
-      in.Resolution.data() + entry.First, static_cast<vtkIdType>(entry.Count));
-  }
+  in.ApplyResolutions();
 }
 
 void vtkTimeCriticalRenderer::FinishFrame()
@@ -831,7 +833,7 @@ void vtkTimeCriticalRenderer::FinishFrame()
   }
 
   this->ObjectTrianglesDrawn = static_cast<vtkIdType>(objectTriangles);
-  this->TrianglesDrawn = static_cast<vtkIdType>(objectTriangles + in.OtherTriangleCount);
+  this->TrianglesDrawn = static_cast<vtkIdType>(objectTriangles + in.Load.OtherTriangles);
   timecritical::FrameCostModel::FrameLoad load = in.Load;
   double mapperCalls = 0.0;
   for (const auto& entry : in.Actors)
@@ -893,11 +895,7 @@ void vtkTimeCriticalRenderer::RunCalibration()
       {
         in.Resolution[o] = in.Culled[o] ? 0.0 : std::max(r, 1e-9);
       }
-      for (const auto& entry : in.Actors)
-      {
-        entry.Mapper->SetObjectResolutions(
-          in.Resolution.data() + entry.First, static_cast<vtkIdType>(entry.Count));
-      }
+      in.ApplyResolutions();
       // The fastest of two renders (three for the first, which uploads the
       // vertex buffers and grows the index buffer): scheduling noise only adds.
       double best = HUGE_VAL;
