@@ -1053,6 +1053,13 @@ public:
 private:
   vtkSmartPointer<vtkTimeCriticalRenderer> MakeTimeCriticalRenderer(int policy);
   void Use(vtkRenderer* renderer);
+  /// A plain vtkRenderer with the scene's actor and camera, made current:
+  /// nothing re-chooses the mapper's resolutions.
+  vtkSmartPointer<vtkRenderer> UsePlainRenderer();
+  /// Removes the current renderer from the window.
+  void StopUsing();
+  /// The camera at a frame of the path, clipping range over the whole scene.
+  void MoveTo(int frame);
   double TimedRender();
   int Key(int frame) const;
   void SaveKeyFrame(const std::string& policy, int frame, Image& image);
@@ -1139,12 +1146,34 @@ void Walkthrough::Setup()
 
 void Walkthrough::Use(vtkRenderer* renderer)
 {
+  this->StopUsing();
+  this->Current = renderer;
+  this->Window->AddRenderer(renderer);
+}
+
+vtkSmartPointer<vtkRenderer> Walkthrough::UsePlainRenderer()
+{
+  auto plain = vtkSmartPointer<vtkRenderer>::New();
+  plain->AddActor(this->Actor);
+  plain->SetActiveCamera(this->Camera);
+  SetBackground(plain);
+  this->Use(plain);
+  return plain;
+}
+
+void Walkthrough::StopUsing()
+{
   if (this->Current)
   {
     this->Window->RemoveRenderer(this->Current);
   }
-  this->Current = renderer;
-  this->Window->AddRenderer(renderer);
+  this->Current = nullptr;
+}
+
+void Walkthrough::MoveTo(int frame)
+{
+  ApplyPose(this->Camera, this->Path.At(frame));
+  this->Current->ResetCameraClippingRange(const_cast<double*>(this->Layout.Bounds));
 }
 
 vtkSmartPointer<vtkTimeCriticalRenderer> Walkthrough::MakeTimeCriticalRenderer(int policy)
@@ -1175,8 +1204,7 @@ void Walkthrough::Calibrate()
 {
   auto renderer = this->MakeTimeCriticalRenderer(vtkTimeCriticalRenderer::ACTIVE_SET);
   this->Use(renderer);
-  ApplyPose(this->Camera, this->Path.At(0));
-  renderer->ResetCameraClippingRange(const_cast<double*>(this->Layout.Bounds));
+  this->MoveTo(0);
   const Clock::time_point start = Clock::now();
   if (!renderer->Calibrate())
   {
@@ -1264,8 +1292,7 @@ PolicyRun Walkthrough::Run(const PolicyInfo& policy)
   // first-frame state; vtkLODProp3D needs one frame per never-drawn level.
   const int warmup = lod ? std::max(this->Options.WarmupFrames, this->Options.LODWarmupFrames)
                          : this->Options.WarmupFrames;
-  ApplyPose(this->Camera, this->Path.At(0));
-  this->Current->ResetCameraClippingRange(const_cast<double*>(this->Layout.Bounds));
+  this->MoveTo(0);
   Image previous;
   for (int i = 0; i < warmup; ++i)
   {
@@ -1311,8 +1338,7 @@ PolicyRun Walkthrough::Run(const PolicyInfo& policy)
   const vtkIdType buildsBefore = this->Mapper->GetVertexBufferBuildCount();
   for (int frame = 0; frame < frames; ++frame)
   {
-    ApplyPose(this->Camera, this->Path.At(frame));
-    this->Current->ResetCameraClippingRange(const_cast<double*>(this->Layout.Bounds));
+    this->MoveTo(frame);
     ++CountingLODProp3D::CurrentFrame;
     FrameRecord record;
     record.Measured = this->TimedRender();
@@ -1443,40 +1469,29 @@ void Walkthrough::WriteResolutionMaps()
 {
   // A plain renderer with the same actor and camera: nothing re-chooses the
   // resolutions, so the map shows exactly what TimeCritical drew at that frame.
-  vtkNew<vtkRenderer> plain;
-  plain->AddActor(this->Actor);
-  plain->SetActiveCamera(this->Camera);
-  SetBackground(plain);
-  this->Use(plain);
+  this->UsePlainRenderer();
   this->Mapper->ColorByResolutionOn();
   for (size_t m = 0; m < this->MapFrames.size(); ++m)
   {
     const int frame = this->MapFrames[m];
     const std::vector<double>& r = this->MapResolutions[m];
     this->Mapper->SetObjectResolutions(r.data(), static_cast<vtkIdType>(r.size()));
-    ApplyPose(this->Camera, this->Path.At(frame));
-    plain->ResetCameraClippingRange(const_cast<double*>(this->Layout.Bounds));
+    this->MoveTo(frame);
     this->Window->Render();
     Image image = Capture(this->Window, true);
     WritePNG(image, std::filesystem::path(this->Options.Output) /
         (std::string("timecritical_") + KeyNames[this->Key(frame)] + "_resolution.png"));
   }
   this->Mapper->ColorByResolutionOff();
-  this->Window->RemoveRenderer(plain);
-  this->Current = nullptr;
+  this->StopUsing();
 }
 
 void Walkthrough::MeasureNoiseFloor()
 {
   // Three quarters along the path (backing away: many objects in view), every
   // object at one resolution, with a plain renderer so nothing re-chooses.
-  vtkNew<vtkRenderer> plain;
-  plain->AddActor(this->Actor);
-  plain->SetActiveCamera(this->Camera);
-  SetBackground(plain);
-  this->Use(plain);
-  ApplyPose(this->Camera, this->Path.At((3 * this->Options.Frames) / 4));
-  plain->ResetCameraClippingRange(const_cast<double*>(this->Layout.Bounds));
+  this->UsePlainRenderer();
+  this->MoveTo((3 * this->Options.Frames) / 4);
   this->Mapper->SetResolution(0.2);
   const int warmup = 5, frames = this->Options.Quick ? 10 : 40;
   std::vector<double> times;
@@ -1502,8 +1517,7 @@ void Walkthrough::MeasureNoiseFloor()
   }
   this->Noise.CV = std::sqrt(variance / frames) / this->Noise.Mean;
   this->Noise.ShareOver10Percent = static_cast<double>(slow) / frames;
-  this->Window->RemoveRenderer(plain);
-  this->Current = nullptr;
+  this->StopUsing();
 }
 
 //------------------------------------------------------------------------------
