@@ -3,6 +3,7 @@
 // the substitutions of random TOMs built by random legal edge collapses.
 #include "AllocationCounter.h"
 #include "TOMMesh.h"
+#include "TOMTestMeshes.h"
 #include "TOMTraversal.h"
 
 #include <gtest/gtest.h>
@@ -287,18 +288,6 @@ void Replay(const TOMMesh& mesh, Visit visit)
   }
 }
 
-/// The fan of figure "square with a centre": 4 -> 3 then 3 -> 0 (chains of length 2).
-TOMMesh MakeFan()
-{
-  TOMMesh mesh;
-  mesh.Substitution = { 0, 1, 2, 0, 3 };
-  mesh.BaseVertexCount = 3;
-  // (1,2,4) survives, (0,1,4) dies when 3 leaves, (2,3,4) and (3,0,4) when 4 leaves.
-  mesh.Triangles = { 1, 2, 4, 0, 1, 4, 2, 3, 4, 3, 0, 4 };
-  mesh.BaseTriangleCount = 1;
-  return mesh;
-}
-
 std::vector<uint32_t> ExtractAll(const TOMTraversal& traversal, uint32_t vertexCount,
   uint64_t* steps = nullptr)
 {
@@ -311,7 +300,7 @@ std::vector<uint32_t> ExtractAll(const TOMTraversal& traversal, uint32_t vertexC
 
 TEST(TOMTraversal, HandBuiltFanAtEveryVertexCount)
 {
-  const TOMMesh mesh = MakeFan();
+  const TOMMesh mesh = timecritical::testing::MakeFanTOM();
   const TOMTraversal traversal(mesh);
   EXPECT_EQ(traversal.GetNumberOfVertices(), 5u);
   EXPECT_EQ(traversal.GetNumberOfTriangles(), 4u);
@@ -367,7 +356,7 @@ TEST(TOMTraversal, PairContractionRemovesNoTriangle)
 
 TEST(TOMTraversal, ClampsVertexCountToBaseAndFull)
 {
-  const TOMMesh mesh = MakeFan();
+  const TOMMesh mesh = timecritical::testing::MakeFanTOM();
   const TOMTraversal traversal(mesh);
   EXPECT_EQ(ExtractAll(traversal, 0), ExtractAll(traversal, 3));
   EXPECT_EQ(ExtractAll(traversal, 2), ExtractAll(traversal, 3));
@@ -582,7 +571,7 @@ TEST(TOMTraversal, ExtractDoesNotAllocateWhenBufferSuffices)
 
 TEST(TOMTraversal, GeomorphEndpointsOnFan)
 {
-  const TOMMesh mesh = MakeFan();
+  const TOMMesh mesh = timecritical::testing::MakeFanTOM();
   const TOMTraversal traversal(mesh);
   const std::vector<float> x = { 0.f, 10.f, 20.f, 30.f, 40.f };
   float r = -1.f;

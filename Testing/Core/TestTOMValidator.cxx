@@ -3,6 +3,7 @@
 // corruption, each checking that the message names the right thing.
 #include "TOMErrorCurve.h"
 #include "TOMMesh.h"
+#include "TOMTestMeshes.h"
 #include "TOMTraversal.h"
 #include "TOMValidator.h"
 
@@ -23,16 +24,6 @@ using timecritical::TOMMesh;
 using timecritical::TOMTraversal;
 using timecritical::TOMValidator;
 
-/// Square with a centre: 4 -> 3 then 3 -> 0. Minimum vertex counts 0, 4, 5, 5.
-TOMMesh MakeFan()
-{
-  TOMMesh mesh;
-  mesh.Substitution = { 0, 1, 2, 0, 3 };
-  mesh.BaseVertexCount = 3;
-  mesh.Triangles = { 1, 2, 4, 0, 1, 4, 2, 3, 4, 3, 0, 4 };
-  mesh.BaseTriangleCount = 1;
-  return mesh;
-}
 
 /**
  * Naive minimum vertex count: replay the removals one vertex count at a time
@@ -123,7 +114,7 @@ bool Contains(const std::string& message, const std::string& part)
 
 TEST(TOMValidator, AcceptsValidTOMs)
 {
-  EXPECT_EQ(TOMValidator::Check(MakeFan()), "");
+  EXPECT_EQ(TOMValidator::Check(timecritical::testing::MakeFanTOM()), "");
   EXPECT_EQ(TOMValidator::Check(TOMMesh{}), ""); // empty
   for (uint32_t seed = 1; seed <= 20; ++seed)
   {
@@ -146,7 +137,7 @@ TEST(TOMValidator, AcceptsValidTOMs)
 
 TEST(TOMValidator, AcceptsValidErrorCurve)
 {
-  TOMMesh mesh = MakeFan();
+  TOMMesh mesh = timecritical::testing::MakeFanTOM();
   // Triangles at vertex counts 0..5: the base (3 vertices) has 1, 4 have 2, 5 have 4.
   const std::vector<uint32_t> triangles = { 1, 1, 1, 1, 2, 4 };
   const std::vector<float> errors = { 3.f, 3.f, 3.f, 3.f, 1.f, 0.f };
@@ -173,7 +164,7 @@ TEST(TOMValidator, RawAndMeshOverloadsAgree)
 
 TEST(TOMValidator, RejectsSubstitutionNotBelowOwnIndex)
 {
-  TOMMesh mesh = MakeFan();
+  TOMMesh mesh = timecritical::testing::MakeFanTOM();
   mesh.Substitution[4] = 4;
   EXPECT_MESSAGE(TOMValidator::Check(mesh), "substitution[4] = 4", "lower");
   mesh.Substitution[4] = 7; // also out of range
@@ -183,21 +174,21 @@ TEST(TOMValidator, RejectsSubstitutionNotBelowOwnIndex)
 TEST(TOMValidator, RejectsCycleAttempt)
 {
   // 3 -> 4 -> 3 would loop forever in a traversal; the first upward link is named.
-  TOMMesh mesh = MakeFan();
+  TOMMesh mesh = timecritical::testing::MakeFanTOM();
   mesh.Substitution[3] = 4;
   EXPECT_MESSAGE(TOMValidator::Check(mesh), "substitution[3] = 4", "acyclic");
 }
 
 TEST(TOMValidator, RejectsBaseVertexNotSelfSubstituting)
 {
-  TOMMesh mesh = MakeFan();
+  TOMMesh mesh = timecritical::testing::MakeFanTOM();
   mesh.Substitution[1] = 0;
   EXPECT_MESSAGE(TOMValidator::Check(mesh), "base vertex 1", "substitutes to 0");
 }
 
 TEST(TOMValidator, RejectsVertexIdOutOfRange)
 {
-  TOMMesh mesh = MakeFan();
+  TOMMesh mesh = timecritical::testing::MakeFanTOM();
   mesh.Triangles[7] = 5; // triangle 2, corner 1
   EXPECT_MESSAGE(TOMValidator::Check(mesh), "triangle 2 corner 1", "vertex id 5", "out of range");
   mesh.Triangles[7] = 0xffffffffu;
@@ -206,17 +197,17 @@ TEST(TOMValidator, RejectsVertexIdOutOfRange)
 
 TEST(TOMValidator, RejectsDegenerateTriangle)
 {
-  TOMMesh mesh = MakeFan();
+  TOMMesh mesh = timecritical::testing::MakeFanTOM();
   mesh.Triangles[3] = 1; // triangle 1 becomes (1, 1, 4)
   EXPECT_MESSAGE(TOMValidator::Check(mesh), "triangle 1", "degenerate");
-  mesh = MakeFan();
+  mesh = timecritical::testing::MakeFanTOM();
   mesh.Triangles[11] = 3; // triangle 3 becomes (3, 0, 3): first and last corners
   EXPECT_MESSAGE(TOMValidator::Check(mesh), "triangle 3", "degenerate");
 }
 
 TEST(TOMValidator, RejectsTrianglesOutOfOrder)
 {
-  TOMMesh mesh = MakeFan();
+  TOMMesh mesh = timecritical::testing::MakeFanTOM();
   // Swap triangles 0 (base) and 2 (alive from 5): minimum counts become 5, 4, 0, 5.
   std::swap_ranges(mesh.Triangles.begin(), mesh.Triangles.begin() + 3, mesh.Triangles.begin() + 6);
   EXPECT_MESSAGE(TOMValidator::Check(mesh), "order", "triangle 1 is alive from 4",
@@ -225,7 +216,7 @@ TEST(TOMValidator, RejectsTrianglesOutOfOrder)
 
 TEST(TOMValidator, RejectsWrongBaseTriangleCount)
 {
-  TOMMesh mesh = MakeFan();
+  TOMMesh mesh = timecritical::testing::MakeFanTOM();
   mesh.BaseTriangleCount = 2;
   EXPECT_MESSAGE(TOMValidator::Check(mesh), "base triangle count 2", "1 triangles alive");
   mesh.BaseTriangleCount = 0;
@@ -236,7 +227,7 @@ TEST(TOMValidator, RejectsWrongBaseTriangleCount)
 
 TEST(TOMValidator, RejectsBadBaseVertexCount)
 {
-  TOMMesh mesh = MakeFan();
+  TOMMesh mesh = timecritical::testing::MakeFanTOM();
   mesh.BaseVertexCount = 6;
   EXPECT_MESSAGE(TOMValidator::Check(mesh), "base vertex count 6", "exceeds", "5");
   mesh.BaseVertexCount = 0;
@@ -248,7 +239,7 @@ TEST(TOMValidator, RejectsBadBaseVertexCount)
 
 TEST(TOMValidator, RejectsBadErrorCurve)
 {
-  TOMMesh mesh = MakeFan();
+  TOMMesh mesh = timecritical::testing::MakeFanTOM();
   mesh.ErrorCurve = TOMErrorCurve({ { 1, 1.f }, { 2, 2.f }, { 4, 0.f } });
   EXPECT_MESSAGE(TOMValidator::Check(mesh), "error curve", "sample 1", "increases");
   mesh.ErrorCurve = TOMErrorCurve({ { 1, 1.f }, { 3, 0.f } });
@@ -257,17 +248,17 @@ TEST(TOMValidator, RejectsBadErrorCurve)
 
 TEST(TOMValidator, RejectsSizeMismatch)
 {
-  TOMMesh mesh = MakeFan();
+  TOMMesh mesh = timecritical::testing::MakeFanTOM();
   mesh.Triangles.push_back(0);
   EXPECT_MESSAGE(TOMValidator::Check(mesh), "triangle array size 13", "multiple of 3");
-  mesh = MakeFan();
+  mesh = timecritical::testing::MakeFanTOM();
   mesh.Substitution.pop_back(); // vertex 4 is now out of range
   EXPECT_MESSAGE(TOMValidator::Check(mesh), "vertex id 4", "out of range");
 }
 
 TEST(TOMValidator, RejectsNullPointersWithNonzeroCounts)
 {
-  const TOMMesh mesh = MakeFan();
+  const TOMMesh mesh = timecritical::testing::MakeFanTOM();
   EXPECT_MESSAGE(TOMValidator::Check(nullptr, 5, mesh.Triangles.data(), 4, 3, 1),
     "substitution array is null");
   EXPECT_MESSAGE(TOMValidator::Check(mesh.Substitution.data(), 5, nullptr, 4, 3, 1),
@@ -279,7 +270,7 @@ TEST(TOMValidator, RejectsNullPointersWithNonzeroCounts)
 TEST(TOMValidator, RejectsCountsBeyond32Bits)
 {
   // Checked before anything is read, so garbage counts cannot crash.
-  const TOMMesh mesh = MakeFan();
+  const TOMMesh mesh = timecritical::testing::MakeFanTOM();
   EXPECT_MESSAGE(TOMValidator::Check(mesh.Substitution.data(), uint64_t(1) << 32,
                    mesh.Triangles.data(), 4, 3, 1),
     "number of vertices 4294967296", "32 bits");
