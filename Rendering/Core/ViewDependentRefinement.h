@@ -1,2 +1,224 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// Placeholder: being written.
+#ifndef timecritical_ViewDependentRefinement_h
+#define timecritical_ViewDependentRefinement_h
+
+#include "TimeCriticalRenderingCoreExport.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace timecritical
+{
+struct MergeTree;
+struct TOMMesh;
+
+/**
+ * A view for ViewDependentRefinement, in the object's own coordinates (the
+ * caller applies the inverse of the object's model matrix).
+ */
+struct RefinementView
+{
+  double Eye[3] = { 0.0, 0.0, 1.0 };        ///< camera position
+  double Direction[3] = { 0.0, 0.0, -1.0 }; ///< view direction (normalized internally)
+  bool Parallel = false;                    ///< parallel (orthographic) projection
+  double ViewportHeight = 512.0;            ///< pixels
+  double ViewAngle = 30.0;                  ///< vertical field of view, degrees (perspective)
+  double ParallelScale = 1.0;               ///< half the viewport height in world units (parallel)
+  /// Up to 6 planes a x + b y + c z + d >= 0 inside; nodes wholly outside one are not refined.
+  int NumberOfFrustumPlanes = 0;
+  double FrustumPlanes[6][4] = {};
+  /// Direction towards the first light (normalized internally); used by highlight refinement.
+  double LightDirection[3] = { 0.0, 0.0, 1.0 };
+};
+
+/// What one update did.
+struct RefinementStatistics
+{
+  uint32_t Splits = 0;        ///< all vertex splits, forced ones included
+  uint32_t ForcedSplits = 0;  ///< splits made only to satisfy dependencies (secondary vertices)
+  uint32_t Merges = 0;        ///< edge collapses
+  uint32_t BlockedSplits = 0; ///< wanted splits left out because a dependency was too fine
+  uint32_t DisplayVertices = 0;
+  uint32_t DisplayTriangles = 0;
+  double Seconds = 0.0; ///< wall time of the update
+};
+
+/**
+ * Run-time view-dependent refinement over a merge tree (Xia, El-Sana &
+ * Varshney, section 5): keeps a front of display vertices (all base vertices,
+ * closed under parent) and its display triangles, and moves it from frame to
+ * frame by vertex splits and edge collapses that replay the build-time
+ * collapses exactly (merge-tree dependencies, section 4.4), so every front is
+ * a fold-free triangulation of the same topology as the input.
+ *
+ * Two update modes:
+ * - UpdateFixedAccuracy(): split e_v while its projected error exceeds the
+ *   pixel threshold (smaller near silhouettes and highlights), forcing the
+ *   splits its dependencies need (secondary display vertices, 5.1.2); merge
+ *   when it does not. The result depends on the view only, not on the
+ *   previous front (which only makes the update incremental).
+ * - UpdateBudget(n): dual priority queues (split the largest projected error,
+ *   merge the smallest) until the display triangle count reaches n.
+ *
+ * Initialize() allocates everything; updates and GetTriangles() never allocate.
+ * Not thread-safe; one object per rendered instance.
+ */
+class TIMECRITICALRENDERINGCORE_EXPORT ViewDependentRefinement
+{
+public:
+  ViewDependentRefinement();
+  ~ViewDependentRefinement();
+  ViewDependentRefinement(const ViewDependentRefinement&) = delete;
+  ViewDependentRefinement& operator=(const ViewDependentRefinement&) = delete;
+
+  /**
+   * Copies what it needs of the TOM, its merge tree (same vertices) and the
+   * points (3 coordinates per TOM vertex) and starts from the coarsest front.
+   * Throws std::invalid_argument when the arrays do not fit together.
+   */
+  void Initialize(const TOMMesh& tom, const MergeTree& tree, const float* points);
+  void Initialize(const TOMMesh& tom, const MergeTree& tree, const double* points);
+
+  /// Back to the coarsest front (base vertices only).
+  void Reset();
+
+  //@{
+  /// The view used by the next update.
+  void SetView(const RefinementView& view);
+  const RefinementView& GetView() const { return this->View; }
+  //@}
+
+  //@{
+  /// Screen-space error threshold tau in pixels (0: full resolution, except culled nodes).
+  void SetPixelThreshold(double tau) { this->PixelThreshold = tau; }
+  double GetPixelThreshold() const { return this->PixelThreshold; }
+  //@}
+
+  //@{
+  /// Do not refine nodes whose normal cone faces away from the eye (default on).
+  void SetBackFaceSimplification(bool on) { this->BackFaceSimplification = on; }
+  bool GetBackFaceSimplification() const { return this->BackFaceSimplification; }
+  //@}
+
+  //@{
+  /// Near silhouettes (normal cone holds directions perpendicular to the view)
+  /// the threshold is multiplied by SilhouetteFactor (in (0, 1], default 0.25).
+  void SetSilhouetteRefinement(bool on) { this->SilhouetteRefinement = on; }
+  bool GetSilhouetteRefinement() const { return this->SilhouetteRefinement; }
+  void SetSilhouetteFactor(double f) { this->SilhouetteFactor = f; }
+  double GetSilhouetteFactor() const { return this->SilhouetteFactor; }
+  //@}
+
+  //@{
+  /// Near highlights (cone of reflection vectors of the light holds the
+  /// direction to the eye) the threshold is multiplied by HighlightFactor.
+  void SetHighlightRefinement(bool on) { this->HighlightRefinement = on; }
+  bool GetHighlightRefinement() const { return this->HighlightRefinement; }
+  void SetHighlightFactor(double f) { this->HighlightFactor = f; }
+  double GetHighlightFactor() const { return this->HighlightFactor; }
+  //@}
+
+  /// Fixed-accuracy update from the previous front (see the class comment).
+  const RefinementStatistics& UpdateFixedAccuracy();
+
+  /**
+   * Budget update from the previous front: the display triangle count ends
+   * at most `triangleBudget` (unless the coarsest mesh is larger, or forced
+   * splits overshoot by a few triangles), spent where the projected error
+   * divided by the local threshold factors is largest.
+   */
+  const RefinementStatistics& UpdateBudget(uint32_t triangleBudget);
+
+  const RefinementStatistics& GetStatistics() const { return this->Statistics; }
+
+  uint32_t GetNumberOfDisplayVertices() const { return this->ActiveVertexCount; }
+  uint32_t GetNumberOfDisplayTriangles() const { return this->DisplayCount; }
+
+  /// The display triangles, 3 TOM vertex ids each (GetNumberOfDisplayTriangles() of them).
+  const uint32_t* GetTriangles() const { return this->Display.data(); }
+
+  /**
+   * Copies min(capacity, display triangles) triangles into out (3 ids each),
+   * adding `offset` to every id (several objects in one vertex buffer).
+   * Returns the number of display triangles.
+   */
+  uint32_t CopyTriangles(uint32_t* out, uint32_t capacity, uint32_t offset = 0) const;
+
+  /// Whether TOM vertex v is a display vertex.
+  bool IsDisplayVertex(uint32_t v) const { return v < this->N && this->Active[v] != 0; }
+
+  uint32_t GetNumberOfVertices() const { return this->N; }
+  uint32_t GetNumberOfBaseVertices() const { return this->B; }
+
+private:
+  struct Node; // per-event view attributes (packed)
+
+  template <typename T>
+  void InitializeImpl(const TOMMesh& tom, const MergeTree& tree, const T* points);
+  void PrepareView();
+  /// Projected error of event v over its local threshold factor; negative when culled.
+  double Priority(uint32_t v) const;
+  bool Wanted(uint32_t v) const;
+  void Split(uint32_t v);
+  void Merge(uint32_t v);
+  /// Splits v and, first, every split it needs. Returns false when blocked.
+  bool ForceSplit(uint32_t v);
+  bool CanMerge(uint32_t v) const;
+  /// First inactive vertex whose split v needs, v itself when none; UINT32_MAX when blocked.
+  uint32_t FirstRequirement(uint32_t v) const;
+  uint32_t NextChild(uint32_t w) const;
+  uint32_t LastActiveChild(uint32_t w) const;
+  bool AliveAt(uint32_t w, uint32_t v) const;
+  void AddDisplay(uint32_t t);
+  void RemoveDisplay(uint32_t t);
+  // Budget mode heaps (indexed binary heaps over vertex ids).
+  void SplitHeapUpdate(uint32_t v);
+  void MergeHeapUpdate(uint32_t v);
+  void RefreshCandidates(uint32_t w);
+
+  uint32_t N = 0;
+  uint32_t B = 0;
+  uint32_t T = 0;
+  std::vector<uint32_t> Parent;
+  std::vector<uint32_t> ChildOffsets, Children; // children sorted by id
+  std::vector<uint32_t> ActiveChildren;         // active children = a prefix of the sorted ones
+  std::vector<uint8_t> Active;
+  std::vector<uint32_t> DependencyOffsets, Dependencies;
+  std::vector<uint32_t> BlockOffsets; // triangles of block v: [BlockOffsets[v], BlockOffsets[v+1])
+  std::vector<uint32_t> BirthCorners; // corners of each triangle when it appears
+  std::vector<uint32_t> StarOffsets, StarSlots; // slots 3t+k that turn from parent to v at split
+  std::vector<Node> Nodes;
+
+  std::vector<uint32_t> Display;   // 3 ids per display triangle
+  std::vector<uint32_t> DisplayId; // TOM triangle of each display triangle
+  std::vector<uint32_t> DisplayPos; // TOM triangle -> display index or UINT32_MAX
+  uint32_t DisplayCount = 0;
+  uint32_t ActiveVertexCount = 0;
+
+  std::vector<uint32_t> Stack;
+  std::vector<uint32_t> Work;
+  std::vector<uint8_t> Queued;
+  // Budget heaps: ids, positions (UINT32_MAX: absent), keys.
+  std::vector<uint32_t> SplitHeap, SplitPos, MergeHeap, MergePos;
+  std::vector<double> Key;
+  uint32_t SplitSize = 0, MergeSize = 0;
+
+  RefinementView View;
+  double PixelThreshold = 1.0;
+  bool BackFaceSimplification = true;
+  bool SilhouetteRefinement = false;
+  double SilhouetteFactor = 0.25;
+  bool HighlightRefinement = false;
+  double HighlightFactor = 0.25;
+
+  // Derived from View by PrepareView().
+  double EyeX = 0, EyeY = 0, EyeZ = 0;
+  double DirX = 0, DirY = 0, DirZ = -1;
+  double LightX = 0, LightY = 0, LightZ = 1;
+  double PixelsPerUnit = 1.0; // parallel: per world unit; perspective: times distance
+
+  RefinementStatistics Statistics;
+};
+}
+
+#endif
