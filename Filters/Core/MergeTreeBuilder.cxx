@@ -1,2 +1,446 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// Placeholder: being written.
+#include "MergeTreeBuilder.h"
+
+#include "CollapseEngine.h"
+#include "MergeTreeAttributes.h"
+
+#include <algorithm>
+#include <cstring>
+#include <limits>
+#include <utility>
+#include <vector>
+
+/*
+ * The level schedule over the collapse engine (CollapseEngine.h), after Xia,
+ * El-Sana & Varshney, section 4.1.
+ *
+ * A level is an independent set of half-edge collapses u -> w: no two share a
+ * triangle of their regions of influence (the triangles around u or w). Two
+ * regions share a triangle exactly when an end of one edge is an end of the
+ * other or adjacent to one, so once u -> w is applied the vertices that later
+ * collapses of the level may not use are w and its new neighbours: they are
+ * "touched". Collapses are taken least error first: the level starts with
+ * every vertex's cheapest collapse sorted by key; a vertex is skipped when it
+ * is touched, deferred to the next level when its target is.
+ *
+ * Why one sort per level suffices: the engine changes the key or target only
+ * of vertices of the region (w and its neighbours), which are touched and wait
+ * for the next level anyway. So the key of every untouched vertex is still
+ * the one it was sorted by, and the order is exactly least error first. The
+ * next level's list is the touched vertices (their fresh keys, read while the
+ * collapse has them in cache) plus the deferred entries, unchanged.
+ *
+ * When a vertex's cheapest target is illegal its cheapest legal one is taken,
+ * at once when still the least error, otherwise re-queued in a small heap that
+ * is merged with the sorted list. When a whole level finds nothing legal the
+ * engine relaxes its constraints (as for TOMBuilder) and the level starts
+ * again; the build ends when nothing is left at the last relaxation.
+ */
+
+namespace timecritical
+{
+namespace
+{
+using collapse::Candidate;
+using collapse::CollapseEngine;
+using collapse::Invalid;
+
+/// A candidate collapse: u's key as an order-preserving integer, u and its target.
+struct Entry
+{
+  uint32_t Key;
+  uint32_t Vertex;
+  uint32_t Target;
+  uint32_t Unused;
+};
+
+/// Float key -> unsigned integer of the same order (negative keys included).
+inline uint32_t OrderedBits(float key)
+{
+  uint32_t bits;
+  std::memcpy(&bits, &key, sizeof(bits));
+  return bits & 0x80000000u ? ~bits : bits | 0x80000000u;
+}
+
+constexpr uint32_t NoKey = std::numeric_limits<uint32_t>::max();
+
+/// Stable LSD radix sort by Key (three passes of 11 bits), through `buffer`.
+void SortByKey(std::vector<Entry>& entries, std::vector<Entry>& buffer)
+{
+  constexpr unsigned bits = 11, buckets = 1u << bits, mask = buckets - 1;
+  static_assert(3 * bits >= 32, "three passes cover the key");
+  const size_t n = entries.size();
+  if (n < 2)
+  {
+    return;
+  }
+  std::vector<uint32_t> counts(3 * buckets, 0);
+  for (const Entry& e : entries)
+  {
+    ++counts[e.Key & mask];
+    ++counts[buckets + ((e.Key >> bits) & mask)];
+    ++counts[2 * buckets + (e.Key >> (2 * bits))];
+  }
+  buffer.resize(n);
+  for (unsigned pass = 0; pass < 3; ++pass)
+  {
+    uint32_t* count = counts.data() + pass * buckets;
+    if (count[entries[0].Key >> (pass * bits) & mask] == n)
+    {
+      continue; // one bucket only: this digit is the same everywhere
+    }
+    uint32_t sum = 0;
+    for (unsigned b = 0; b < buckets; ++b)
+    {
+      const uint32_t c = count[b];
+      count[b] = sum;
+      sum += c;
+    }
+    for (const Entry& e : entries)
+    {
+      buffer[count[e.Key >> (pass * bits) & mask]++] = e;
+    }
+    entries.swap(buffer);
+  }
+}
+
+/// Min-heap order of re-queued entries (std heaps are max-heaps).
+bool LaterEntry(const Entry& a, const Entry& b)
+{
+  return a.Key > b.Key || (a.Key == b.Key && a.Vertex > b.Vertex);
+}
+
+/// Levels of independent collapses, least error first within a level.
+class LevelSchedule
+{
+public:
+  explicit LevelSchedule(CollapseEngine& engine)
+    : Engine(engine)
+  {
+  }
+
+  bool Run();
+
+  /// Level of each removal step, in step order.
+  const std::vector<uint16_t>& GetStepLevels() const { return this->StepLevel; }
+  uint16_t GetLevelCount() const { return this->LevelCount; }
+
+private:
+  bool RunLevel(uint16_t level, uint32_t& applied);
+  uint32_t Alternative(uint32_t u, uint32_t failedTarget);
+  void Apply(uint32_t u, uint32_t w, uint16_t level);
+  void Touch(uint32_t x);
+  Entry EntryOf(uint32_t x) const;
+  void CollectAll();
+  void CollectNext();
+  bool IsTouched(uint32_t v) const { return this->Touched[v] == this->Stamp; }
+  uint32_t NextKey() const
+  {
+    uint32_t k = this->Position < this->Current.size() ? this->Current[this->Position].Key : NoKey;
+    return this->Requeued.empty() ? k : std::min(k, this->Requeued.front().Key);
+  }
+
+  CollapseEngine& Engine;
+  std::vector<Entry> Current;  // this level's candidates, by key
+  size_t Position = 0;         // next one in Current
+  std::vector<Entry> Requeued; // min-heap: legal alternatives costlier than their turn
+  std::vector<Entry> Next;     // fresh entries of the touched vertices
+  std::vector<Entry> Deferred; // untouched vertices whose target is touched
+  std::vector<Entry> Buffer;   // radix sort
+  std::vector<uint8_t> Touched; // == Stamp: touched in this level
+  std::vector<uint32_t> Slot;   // touched vertex -> its entry in Next
+  uint8_t Stamp = 0;
+  std::vector<uint16_t> StepLevel;
+  uint16_t LevelCount = 0;
+  size_t ReportEvery = 1;
+  size_t NextReport = 1;
+};
+
+//------------------------------------------------------------------------------
+Entry LevelSchedule::EntryOf(uint32_t x) const
+{
+  const CollapseEngine& e = this->Engine;
+  if (e.IsRemoved(x) || !(e.GetKey(x) < std::numeric_limits<float>::infinity()))
+  {
+    return { NoKey, Invalid, Invalid, 0 }; // removed, blocked or without a target
+  }
+  return { OrderedBits(e.GetKey(x)), x, e.GetTarget(x), 0 };
+}
+
+//------------------------------------------------------------------------------
+void LevelSchedule::Touch(uint32_t x)
+{
+  // A vertex touched again may have a new key: its one entry is overwritten.
+  if (this->Touched[x] != this->Stamp)
+  {
+    this->Touched[x] = this->Stamp;
+    this->Slot[x] = static_cast<uint32_t>(this->Next.size());
+    this->Next.push_back(this->EntryOf(x));
+  }
+  else
+  {
+    this->Next[this->Slot[x]] = this->EntryOf(x);
+  }
+}
+
+//------------------------------------------------------------------------------
+void LevelSchedule::CollectAll()
+{
+  // Every vertex with a candidate: at the start and after a relaxation, which
+  // gives keys back to blocked vertices.
+  CollapseEngine& e = this->Engine;
+  this->Current.clear();
+  for (uint32_t v = 0; v < e.GetNumberOfVertices(); ++v)
+  {
+    const Entry entry = this->EntryOf(v);
+    if (entry.Vertex != Invalid)
+    {
+      this->Current.push_back(entry);
+    }
+  }
+  SortByKey(this->Current, this->Buffer);
+}
+
+//------------------------------------------------------------------------------
+void LevelSchedule::CollectNext()
+{
+  this->Current.clear();
+  for (const Entry& entry : this->Next)
+  {
+    if (entry.Vertex != Invalid)
+    {
+      this->Current.push_back(entry);
+    }
+  }
+  for (const Entry& entry : this->Deferred)
+  {
+    if (!this->IsTouched(entry.Vertex)) // else its fresh entry came from Next
+    {
+      this->Current.push_back(entry);
+    }
+  }
+  SortByKey(this->Current, this->Buffer);
+}
+
+//------------------------------------------------------------------------------
+uint32_t LevelSchedule::Alternative(uint32_t u, uint32_t failedTarget)
+{
+  // u's cheapest target is illegal: its cheapest legal one. Returns it when it
+  // is still the least error of the level; otherwise re-queues u, or defers
+  // it when that target is touched, or blocks u when nothing is legal.
+  CollapseEngine& e = this->Engine;
+  const std::vector<Candidate>& candidates = e.GatherCandidates(u);
+  for (size_t i = 0; i < candidates.size(); ++i)
+  {
+    const Candidate c = candidates[i];
+    if (c.Target == failedTarget || !e.CheckCollapse(u, c.Target))
+    {
+      continue;
+    }
+    e.SetTarget(u, c.Target);
+    const uint32_t key = OrderedBits(CollapseEngine::KeyOf(c.Cost));
+    if (!this->IsTouched(c.Target) && key <= this->NextKey())
+    {
+      return c.Target;
+    }
+    e.SetKey(u, c.Cost);
+    const Entry entry{ key, u, c.Target, 0 };
+    if (this->IsTouched(c.Target))
+    {
+      this->Deferred.push_back(entry);
+    }
+    else
+    {
+      this->Requeued.push_back(entry);
+      std::push_heap(this->Requeued.begin(), this->Requeued.end(), LaterEntry);
+    }
+    return Invalid;
+  }
+  e.Block(u); // a collapse around u re-evaluates it (and touches it)
+  return Invalid;
+}
+
+//------------------------------------------------------------------------------
+void LevelSchedule::Apply(uint32_t u, uint32_t w, uint16_t level)
+{
+  CollapseEngine& e = this->Engine;
+  // The next untouched candidate probably comes next: fetched meanwhile.
+  uint32_t hint = Invalid;
+  for (size_t i = this->Position, end = std::min(this->Current.size(), this->Position + 4); i < end;
+       ++i)
+  {
+    const Entry& next = this->Current[i];
+    if (!this->IsTouched(next.Vertex) && !this->IsTouched(next.Target) && next.Vertex != u &&
+      next.Vertex != w && next.Target != w)
+    {
+      hint = next.Vertex;
+      break;
+    }
+  }
+  e.SetPrefetchHint(hint);
+
+  const uint32_t before = e.GetRemovedCount();
+  e.ApplyCollapse(u, w);
+  // u, and vertices orphaned with it (non-manifold input only).
+  for (uint32_t step = before; step < e.GetRemovedCount(); ++step)
+  {
+    this->StepLevel.push_back(level);
+    this->Touch(e.GetRemovedVertex(step));
+  }
+  this->Touch(w);
+  e.ForEachNeighbour(w, [this](uint32_t x) { this->Touch(x); });
+}
+
+//------------------------------------------------------------------------------
+bool LevelSchedule::RunLevel(uint16_t level, uint32_t& applied)
+{
+  CollapseEngine& e = this->Engine;
+  if (++this->Stamp == 0)
+  {
+    std::fill(this->Touched.begin(), this->Touched.end(), uint8_t(0));
+    this->Stamp = 1;
+  }
+  this->Next.clear();
+  this->Deferred.clear();
+  this->Position = 0;
+  applied = 0;
+  const uint32_t n = e.GetNumberOfVertices();
+  for (;;)
+  {
+    Entry entry;
+    if (!this->Requeued.empty() &&
+      (this->Position == this->Current.size() ||
+        !LaterEntry(this->Requeued.front(), this->Current[this->Position])))
+    {
+      std::pop_heap(this->Requeued.begin(), this->Requeued.end(), LaterEntry);
+      entry = this->Requeued.back();
+      this->Requeued.pop_back();
+    }
+    else if (this->Position < this->Current.size())
+    {
+      entry = this->Current[this->Position++];
+    }
+    else
+    {
+      return true;
+    }
+    const uint32_t u = entry.Vertex;
+    if (this->IsTouched(u))
+    {
+      continue; // its region changed: its fresh entry is in Next
+    }
+    if (this->IsTouched(entry.Target))
+    {
+      this->Deferred.push_back(entry); // u is unchanged: the same entry next level
+      continue;
+    }
+    uint32_t w = entry.Target;
+    if (!e.CheckCollapse(u, w))
+    {
+      w = this->Alternative(u, w);
+      if (w == Invalid)
+      {
+        continue;
+      }
+    }
+    this->Apply(u, w, level);
+    ++applied;
+    if (e.GetRemovedCount() >= this->NextReport)
+    {
+      this->NextReport += this->ReportEvery;
+      if (!e.ReportProgress(0.05 + 0.9 * double(e.GetRemovedCount()) / n))
+      {
+        return false;
+      }
+    }
+  }
+}
+
+//------------------------------------------------------------------------------
+bool LevelSchedule::Run()
+{
+  CollapseEngine& e = this->Engine;
+  const uint32_t n = e.GetNumberOfVertices();
+  // Allocated once: no list outgrows the vertex count.
+  this->Current.reserve(n);
+  this->Next.reserve(n);
+  this->Deferred.reserve(n);
+  this->Buffer.reserve(n);
+  this->Requeued.reserve(1024);
+  this->Touched.assign(n, uint8_t(0));
+  this->Slot.resize(n);
+  this->StepLevel.reserve(n);
+  this->ReportEvery = std::max<size_t>(1, n / 200);
+  this->NextReport = this->ReportEvery;
+
+  this->CollectAll();
+  uint16_t level = 0;
+  for (;;)
+  {
+    uint32_t applied = 0;
+    if (!this->RunLevel(level, applied))
+    {
+      return false;
+    }
+    if (applied == 0)
+    {
+      // Nothing legal left (every candidate blocked): relax, or done.
+      if (!e.Relax())
+      {
+        break;
+      }
+      this->CollectAll();
+      continue;
+    }
+    // Levels are 16-bit: a (pathological) mesh needing more shares the last one.
+    if (level < std::numeric_limits<uint16_t>::max() - 1)
+    {
+      ++level;
+    }
+    this->CollectNext();
+  }
+  this->LevelCount = level;
+  return true;
+}
+}
+
+//------------------------------------------------------------------------------
+MergeTreeBuilder::MergeTreeBuilder(MergeTreeBuildOptions options)
+  : Options(std::move(options))
+{
+}
+
+//------------------------------------------------------------------------------
+MergeTreeBuildResult MergeTreeBuilder::Build(const double* points, size_t numberOfPoints,
+  const uint32_t* triangles, size_t numberOfTriangles) const
+{
+  MergeTreeBuildResult result;
+  CollapseEngine engine(this->Options.Collapse, false);
+  LevelSchedule schedule(engine);
+  result.TOM = engine.Run(
+    points, numberOfPoints, triangles, numberOfTriangles, [&schedule] { return schedule.Run(); });
+  if (result.TOM.Aborted)
+  {
+    return result;
+  }
+
+  // Per TOM vertex: the level of the collapse that removed it (TOM vertex
+  // n - 1 - s was removed at step s), the level count for base vertices.
+  const TOMMesh& tom = result.TOM.Mesh;
+  const uint32_t n = tom.GetNumberOfVertices();
+  const std::vector<uint16_t>& stepLevels = schedule.GetStepLevels();
+  std::vector<uint16_t> levels(n, schedule.GetLevelCount());
+  for (uint32_t step = 0; step < stepLevels.size(); ++step)
+  {
+    levels[n - 1 - step] = stepLevels[step];
+  }
+  std::vector<double> positions(3 * static_cast<size_t>(n));
+  for (uint32_t v = 0; v < n; ++v)
+  {
+    std::copy_n(points + 3 * static_cast<size_t>(result.TOM.VertexOrder[v]), 3,
+      positions.begin() + 3 * static_cast<std::ptrdiff_t>(v));
+  }
+  result.Tree = ComputeMergeTree(tom, positions.data(), levels.data());
+  return result;
+}
+}
