@@ -171,10 +171,18 @@ private:
   bool AliveAt(uint32_t w, uint32_t v) const;
   void AddDisplay(uint32_t t);
   void RemoveDisplay(uint32_t t);
-  // Budget mode heaps (indexed binary heaps over vertex ids).
-  void SplitHeapUpdate(uint32_t v);
-  void MergeHeapUpdate(uint32_t v);
-  void RefreshCandidates(uint32_t w);
+  // Budget mode: (re)insert a split or merge candidate with its current priority.
+  void OfferSplit(uint32_t c);
+  void OfferMerge(uint32_t v);
+
+  /// What Split() and Merge() must tell the running update about new candidates.
+  enum class UpdateMode
+  {
+    None,
+    Fixed,
+    Budget
+  };
+  UpdateMode Mode = UpdateMode::None;
 
   uint32_t N = 0;
   uint32_t B = 0;
@@ -195,9 +203,9 @@ private:
   uint32_t DisplayCount = 0;
   uint32_t ActiveVertexCount = 0;
 
-  std::vector<uint32_t> Stack;
-  std::vector<uint32_t> Work;
-  std::vector<uint8_t> Queued;
+  std::vector<uint32_t> Stack; // forced splits
+  std::vector<uint32_t> Work;  // fixed-accuracy split candidates
+  uint32_t WorkSize = 0;
   // Budget heaps: ids, positions (UINT32_MAX: absent), keys.
   std::vector<uint32_t> SplitHeap, SplitPos, MergeHeap, MergePos;
   std::vector<double> Key;
