@@ -1,0 +1,74 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Private helpers shared by the filters that build TOMs (vtkTOMBuilder,
+// vtkMergeTreeBuilder): one way to prepare their input and assemble their
+// output, so the two filters accept and carry data identically.
+#ifndef TOMFilterSupport_h
+#define TOMFilterSupport_h
+
+#include "vtkSmartPointer.h"
+#include "vtkType.h"
+
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+class vtkAlgorithm;
+class vtkObject;
+class vtkPolyData;
+
+namespace timecritical
+{
+struct TOMBuildResult;
+
+/// A filter's input surface, cleaned and triangulated, in the form the cores take.
+struct PreparedSurface
+{
+  /// Merged points with their point data, triangles with their cell data.
+  vtkSmartPointer<vtkPolyData> Triangles;
+  /// 3 coordinates per point of Triangles.
+  std::vector<double> Points;
+  /// 3 point ids per triangle of Triangles.
+  std::vector<uint32_t> Ids;
+  /// Vertex, line and degenerate cells left out.
+  vtkIdType NumberOfDroppedCells = 0;
+  /// Input points merged into coincident ones.
+  vtkIdType NumberOfMergedPoints = 0;
+};
+
+enum class SurfaceStatus
+{
+  Ready,  ///< the surface has triangles
+  Empty,  ///< no points or no cells at all: nothing reported, the caller decides
+  Failed, ///< unusable input, already reported as an error on the filter
+};
+
+/**
+ * Checks and prepares `input` for `filter`: rejects out-of-range point ids,
+ * non-finite coordinates and inputs without surface cells; merges coincident
+ * points; triangulates polygons and strips; drops vertices, lines and
+ * degenerate cells with a warning on `filter`. Reports progress up to 0.05.
+ */
+SurfaceStatus PrepareSurface(vtkAlgorithm* filter, vtkPolyData* input, PreparedSurface& surface);
+
+/// Progress callback of the cores: maps [0,1] to [0.05, 0.95] and stops on AbortExecute.
+std::function<bool(double)> CoreProgress(vtkAlgorithm* filter);
+
+/**
+ * Fills `output` with the points, point data, triangles and cell data of
+ * `surface` in the TOM order of `result`, and the field data of `input`.
+ * Warns on `filter` about triangles the core dropped and counts them in
+ * `surface`. The caller then attaches the TOM (and merge-tree) arrays.
+ */
+void WriteOrderedSurface(vtkAlgorithm* filter, vtkPolyData* input, PreparedSurface& surface,
+  const TOMBuildResult& result, vtkPolyData* output);
+
+/**
+ * Setter body for a clamped double setting that, unlike vtkSetClampMacro,
+ * rejects NaN with an error on `object`. Returns true when `member` changed
+ * (the caller then calls Modified()).
+ */
+bool SetClampedSetting(vtkObject* object, const char* name, double value, double minimum,
+  double maximum, double& member);
+}
+
+#endif

@@ -1,0 +1,106 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @class   vtkMergeTreeBuilder
+ * @brief   builds a merge tree for view-dependent refinement from a surface
+ *
+ * Simplifies the input by half-edge collapses grouped into levels of
+ * independent sets (Xia, El-Sana & Varshney, section 4) and stores the result
+ * as a Totally Ordered Mesh (see vtkTOMFieldData) that also carries the merge
+ * tree: levels, node errors, bounding radii, normal cones and dependencies
+ * (see vtkMergeTreeFieldData). The output renders as the full mesh, extracts
+ * uniform resolutions with vtkExtractTOMResolution and view-dependent ones with
+ * vtkExtractViewDependentMesh. All point and cell data travel with the
+ * reordered points and triangles.
+ *
+ * Input handling is that of vtkTOMBuilder: coincident points are merged,
+ * polygons and strips triangulated; lines, vertices and degenerate triangles
+ * are dropped with a warning; out-of-range point ids, non-finite coordinates
+ * and input without surface cells are errors. An empty input gives an empty
+ * output without a message.
+ *
+ * Save the output as .vtp in Binary or Ascii data mode (see the README on
+ * appended mode).
+ *
+ * @sa vtkTOMBuilder vtkMergeTreeFieldData vtkExtractViewDependentMesh
+ */
+#ifndef vtkMergeTreeBuilder_h
+#define vtkMergeTreeBuilder_h
+
+#include "TimeCriticalFiltersModule.h" // for export macro
+#include "vtkPolyDataAlgorithm.h"
+
+class TIMECRITICALFILTERS_EXPORT vtkMergeTreeBuilder : public vtkPolyDataAlgorithm
+{
+public:
+  static vtkMergeTreeBuilder* New();
+  vtkTypeMacro(vtkMergeTreeBuilder, vtkPolyDataAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /// Keep open boundaries in place as long as other collapses remain. Default on.
+  vtkSetMacro(PreserveBoundaries, bool);
+  vtkGetMacro(PreserveBoundaries, bool);
+  vtkBooleanMacro(PreserveBoundaries, bool);
+  ///@}
+
+  ///@{
+  /// Keep sharp edges in place as long as other collapses remain. Default on.
+  vtkSetMacro(PreserveFeatureEdges, bool);
+  vtkGetMacro(PreserveFeatureEdges, bool);
+  vtkBooleanMacro(PreserveFeatureEdges, bool);
+  ///@}
+
+  ///@{
+  /// Dihedral angle in degrees above which an edge is sharp, in [0, 180]. Default 45.
+  void SetFeatureAngle(double angle);
+  vtkGetMacro(FeatureAngle, double);
+  ///@}
+
+  ///@{
+  /// Reject collapses that rotate a triangle normal by more than this (degrees, [0, 180]). Default 90.
+  void SetMaximumNormalDeviation(double angle);
+  vtkGetMacro(MaximumNormalDeviation, double);
+  ///@}
+
+  ///@{
+  /**
+   * Sliver avoidance (Xia, El-Sana & Varshney eq. 3): collapses creating a
+   * triangle of quality 4*sqrt(3)*area / (l0^2 + l1^2 + l2^2) below this value
+   * are postponed while others remain, so that run-time triangulations avoid
+   * slivers. In [0, 1]; 0 (default) disables it.
+   */
+  void SetMinimumTriangleQuality(double quality);
+  vtkGetMacro(MinimumTriangleQuality, double);
+  ///@}
+
+  ///@{
+  /// Statistics of the last build.
+  vtkGetMacro(NumberOfDroppedCells, vtkIdType);
+  vtkGetMacro(NumberOfMergedPoints, vtkIdType);
+  vtkGetMacro(LevelCount, int);
+  vtkGetMacro(BuildTime, double);
+  ///@}
+
+protected:
+  vtkMergeTreeBuilder();
+  ~vtkMergeTreeBuilder() override;
+
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+  bool PreserveBoundaries = true;
+  bool PreserveFeatureEdges = true;
+  double FeatureAngle = 45.0;
+  double MaximumNormalDeviation = 90.0;
+  double MinimumTriangleQuality = 0.0;
+  vtkIdType NumberOfDroppedCells = 0;
+  vtkIdType NumberOfMergedPoints = 0;
+  int LevelCount = 0;
+  double BuildTime = 0.0;
+
+private:
+  vtkMergeTreeBuilder(const vtkMergeTreeBuilder&) = delete;
+  void operator=(const vtkMergeTreeBuilder&) = delete;
+};
+
+#endif
