@@ -248,7 +248,7 @@ struct alignas(64) Vertex
 {
   Vec3 P;        // position in the unit box
   float Key;     // key in the heap (+inf when not in it)
-  uint32_t Padding;
+  uint32_t Tag; // the schedule's own word about the vertex (the engine never reads it)
   uint32_t AdjStart;
   uint32_t AdjCount; // entries in the list (dead triangles possibly included)
   uint32_t AdjCap;
@@ -633,6 +633,8 @@ public:
   /// Next relaxation level; false when all are used up (the build is done).
   bool Relax();
   int GetRelaxation() const { return this->CurrentLevel; }
+  /// A word per vertex for the schedule, in the vertex's cache line (uninitialised).
+  uint32_t& Tag(uint32_t v) { return this->Vertices[v].Tag; }
   /// Without a heap: the vertex whose collapse probably comes next, prefetched meanwhile.
   void SetPrefetchHint(uint32_t v) { this->PrefetchHint = v; }
 

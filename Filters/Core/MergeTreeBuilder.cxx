@@ -147,8 +147,8 @@ private:
   std::vector<Entry> Next;     // fresh entries of the touched vertices
   std::vector<Entry> Deferred; // untouched vertices whose target is touched
   std::vector<Entry> Buffer;   // radix sort
-  std::vector<uint8_t> Touched; // == Stamp: touched in this level
-  std::vector<uint32_t> Slot;   // touched vertex -> its entry in Next
+  std::vector<uint8_t> Touched; // == Stamp: touched in this level (then the engine's tag
+                                // of the vertex is its entry in Next)
   uint8_t Stamp = 0;
   std::vector<uint16_t> StepLevel;
   uint16_t LevelCount = 0;
@@ -171,15 +171,16 @@ Entry LevelSchedule::EntryOf(uint32_t x) const
 void LevelSchedule::Touch(uint32_t x)
 {
   // A vertex touched again may have a new key: its one entry is overwritten.
+  // The slot is kept in the vertex's own cache line, which the collapse has just read.
   if (this->Touched[x] != this->Stamp)
   {
     this->Touched[x] = this->Stamp;
-    this->Slot[x] = static_cast<uint32_t>(this->Next.size());
+    this->Engine.Tag(x) = static_cast<uint32_t>(this->Next.size());
     this->Next.push_back(this->EntryOf(x));
   }
   else
   {
-    this->Next[this->Slot[x]] = this->EntryOf(x);
+    this->Next[this->Engine.Tag(x)] = this->EntryOf(x);
   }
 }
 
@@ -368,7 +369,6 @@ bool LevelSchedule::Run()
   this->Buffer.reserve(n);
   this->Requeued.reserve(1024);
   this->Touched.assign(n, uint8_t(0));
-  this->Slot.resize(n);
   this->StepLevel.reserve(n);
   this->ReportEvery = std::max<size_t>(1, n / 200);
   this->NextReport = this->ReportEvery;
