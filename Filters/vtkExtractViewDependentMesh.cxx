@@ -257,6 +257,11 @@ int vtkExtractViewDependentMesh::RequestData(
       vtkErrorMacro("Input is not a valid merge tree: " << in.Reader->GetErrorMessage());
       return 0;
     }
+    if (!input->GetPoints() || input->GetNumberOfPoints() == 0)
+    {
+      // A valid but empty tree: nothing to refine.
+      return 1;
+    }
     try
     {
       vtkDataArray* coordinates = input->GetPoints()->GetData();

@@ -43,6 +43,7 @@
 #include <limits>
 #include <map>
 #include <set>
+#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -1273,6 +1274,13 @@ TEST(vtkExtractViewDependentMesh, EmptyAndForeignInput)
     << log.AllErrors();
   EXPECT_EQ(extract->GetOutput()->GetNumberOfPoints(), 0);
 
+  // Merge-tree arrays on no points at all: an empty tree, whether valid or not, is no crash.
+  vtkNew<vtkPolyData> emptyTree;
+  vtkMergeTreeFieldData::Write(timecritical::TOMMesh(), timecritical::MergeTree(), emptyTree);
+  extract->SetInputData(emptyTree);
+  extract->Update();
+  EXPECT_EQ(extract->GetOutput()->GetNumberOfPoints(), 0);
+
   // A valid tree afterwards works again.
   log.Errors.clear();
   extract->SetInputData(SphereTree());
@@ -1310,4 +1318,21 @@ TEST(vtkExtractViewDependentMesh, RealMeshWhenAvailable)
   EXPECT_EQ(front.ClosedManifold, full.ClosedManifold);
   EXPECT_LT(front.Faces, full.Faces);
   EXPECT_GT(front.Faces, 0);
+}
+
+TEST(MergeTreeClasses, PrintSelfReportsSettingsAndState)
+{
+  vtkNew<vtkMergeTreeBuilder> builder;
+  vtkNew<vtkMergeTreeFieldData> reader;
+  vtkNew<vtkExtractViewDependentMesh> extract;
+  ASSERT_TRUE(reader->Read(SphereTree()));
+  std::ostringstream text;
+  builder->Print(text);
+  reader->Print(text);
+  extract->Print(text);
+  for (const char* expected : { "MinimumTriangleQuality: 0", "LevelCount: ", "Valid: 1",
+         "PixelThreshold: 1", "RefinementMode: FIXED_ACCURACY", "ViewportSize: 512 x 512" })
+  {
+    EXPECT_NE(text.str().find(expected), std::string::npos) << expected;
+  }
 }
