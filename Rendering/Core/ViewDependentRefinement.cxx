@@ -204,6 +204,8 @@ void ViewDependentRefinement::InitializeImpl(
   this->SplitPos.assign(n, None);
   this->MergePos.assign(n, None);
   this->Key.assign(n, 0.0);
+  this->SplitLog.assign(n, 0);
+  this->Rejected.assign(n, 0u);
   this->Reset();
 }
 
@@ -522,6 +524,7 @@ void ViewDependentRefinement::Split(uint32_t v)
   }
   else if (this->Mode == UpdateMode::Budget)
   {
+    this->SplitLog[this->SplitLogSize++] = v;
     this->OfferSplit(this->NextChild(u));
     this->OfferSplit(this->NextChild(v));
     this->OfferMerge(v);
@@ -696,7 +699,7 @@ inline bool Less(double a, double b)
 
 void ViewDependentRefinement::OfferSplit(uint32_t c)
 {
-  if (c == None || this->Active[c] || this->SplitPos[c] != None)
+  if (c == None || this->Active[c] || this->SplitPos[c] != None || this->Rejected[c] == this->Frame)
   {
     return;
   }
@@ -733,6 +736,11 @@ const RefinementStatistics& ViewDependentRefinement::UpdateBudget(uint32_t trian
   }
   this->SplitSize = 0;
   this->MergeSize = 0;
+  if (++this->Frame == 0) // stamps wrapped: clear them once every 2^32 frames
+  {
+    std::fill(this->Rejected.begin(), this->Rejected.end(), 0u);
+    this->Frame = 1;
+  }
   this->Mode = UpdateMode::Budget;
   for (uint32_t w = 0; w < this->N; ++w)
   {
@@ -778,7 +786,22 @@ const RefinementStatistics& ViewDependentRefinement::UpdateBudget(uint32_t trian
     if (this->DisplayCount + cost <= triangleBudget)
     {
       Pop(this->SplitHeap.data(), this->SplitPos.data(), this->Key.data(), this->SplitSize, Greater);
+      this->SplitLogSize = 0;
       this->ForceSplit(s);
+      if (this->DisplayCount > triangleBudget)
+      {
+        // The forced splits overshoot: replay them backwards (always legal,
+        // it restores the previous front) and leave s out for this frame.
+        this->Rejected[s] = this->Frame;
+        const uint32_t forced = this->SplitLogSize;
+        while (this->SplitLogSize > 0)
+        {
+          this->Merge(this->SplitLog[--this->SplitLogSize]);
+        }
+        this->Statistics.Splits -= forced;
+        this->Statistics.Merges -= forced;
+        this->Statistics.ForcedSplits -= forced > 0 ? forced - 1 : 0;
+      }
       continue;
     }
     // Full: trade the least useful merge for the most useful split.

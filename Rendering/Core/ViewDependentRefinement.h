@@ -209,6 +209,10 @@ private:
   // Budget heaps: ids, positions (UINT32_MAX: absent), keys.
   std::vector<uint32_t> SplitHeap, SplitPos, MergeHeap, MergePos;
   std::vector<double> Key;
+  std::vector<uint32_t> SplitLog; // splits of the current forced split, to undo an overshoot
+  uint32_t SplitLogSize = 0;
+  std::vector<uint32_t> Rejected; // frame stamp: split left out of this budget update
+  uint32_t Frame = 0;
   uint32_t SplitSize = 0, MergeSize = 0;
 
   RefinementView View;
