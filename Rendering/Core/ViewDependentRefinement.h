@@ -137,6 +137,9 @@ public:
   /// The display triangles, 3 TOM vertex ids each (GetNumberOfDisplayTriangles() of them).
   const uint32_t* GetTriangles() const { return this->Display.data(); }
 
+  /// The TOM triangle (cell) each display triangle stands for, in the same order.
+  const uint32_t* GetTriangleIds() const { return this->DisplayId.data(); }
+
   /**
    * Copies min(capacity, display triangles) triangles into out (3 ids each),
    * adding `offset` to every id (several objects in one vertex buffer).
