@@ -8,7 +8,9 @@
  *  3. traversal rate and extra vertices walked by TOMTraversal::Extract;
  *  4. Hausdorff distance of TOM resolutions against vtkQuadricDecimation at the
  *     same triangle count (and meshopt_simplify, which like the TOM keeps a subset
- *     of the input vertices, as a reference without goal).
+ *     of the input vertices, as a reference without goal);
+ *  5. MergeTreeBuilder: build rate, levels, and the error of its TOM (levels of
+ *     independent collapses) against the greedy TOM's at 50/25/10/5%.
  *
  * Prints one table per section and writes everything to JSON. Missed goals
  * are reported, not failed: the exit status is nonzero only for errors
@@ -16,6 +18,8 @@
  *
  *   TOMBenchmark [--quick] [--json FILE] [--data DIR] [--hausdorff-all]
  */
+#include "MergeTreeAttributes.h"
+#include "MergeTreeBuilder.h"
 #include "TOMBuilder.h"
 #include "TOMMesh.h"
 #include "TOMTraversal.h"
@@ -85,6 +89,7 @@ struct Settings
 
 const std::vector<double> TraversalResolutions = { 1.0, 0.5, 0.25, 0.1, 0.05 };
 const std::vector<double> HausdorffResolutions = { 0.5, 0.25, 0.1 };
+const std::vector<double> MergeTreeResolutions = { 0.5, 0.25, 0.1, 0.05 };
 constexpr double ComparisonFraction = 0.1; ///< quadric and meshopt keep 10% of the triangles
 
 //------------------------------------------------------------------------------
@@ -413,8 +418,9 @@ const Goal MemoryGoal{ "TOM memory overhead over face-vertex", 8.4, false, " %" 
 const Goal TraversalGoal{ "traversal rate", 100.0, true, " Mtri/s" };
 const Goal ChainGoal{ "extra vertices traversed", 75.0, false, " %" };
 const Goal HausdorffGoal{ "Hausdorff TOM / quadric", 1.10, false, "" };
+const Goal MergeTreeBuildGoal{ "merge-tree build rate", 1.0, true, " Mtri/s" };
 const std::vector<const Goal*> AllGoals = { &BuildGoal, &MemoryGoal, &TraversalGoal, &ChainGoal,
-  &HausdorffGoal };
+  &HausdorffGoal, &MergeTreeBuildGoal };
 
 class GoalLog
 {
@@ -843,6 +849,15 @@ struct QualityFigures
   double Ratio() const { return this->Tom.Symmetric() / this->Quadric.Symmetric(); }
 };
 
+/// 5. Merge tree: build time, levels, error (builder's estimate / diagonal) of both TOMs.
+struct MergeTreeFigures
+{
+  Timing Build;
+  double AttributeSeconds = 0.0; ///< of which ComputeMergeTree (one run, timed apart)
+  unsigned Levels = 0;
+  std::vector<double> MergeTreeError, GreedyError; // per MergeTreeResolutions
+};
+
 struct MeshReport
 {
   std::string Name, Origin;
@@ -853,6 +868,7 @@ struct MeshReport
   std::vector<TraversalFigures> Traversal;
   std::vector<QualityFigures> Quality;
   std::string QualitySkipped; ///< why section 4 did not run, empty when it did
+  MergeTreeFigures MergeTree;
 };
 
 //------------------------------------------------------------------------------
@@ -892,6 +908,41 @@ void ValidateTOM(const InputMesh& input, const TOMBuildResult& tom)
     input.Name + ": TOM triangle count differs from the input");
   Require(tom.VertexOrder.size() == tom.Mesh.GetNumberOfVertices(),
     input.Name + ": VertexOrder has the wrong size");
+}
+
+MergeTreeFigures MeasureMergeTree(
+  const Settings& settings, const InputMesh& input, const TOMBuildResult& greedy)
+{
+  const TriangleMesh& mesh = input.Mesh;
+  timecritical::MergeTreeBuildResult tree;
+  MergeTreeFigures figures;
+  figures.Build = TimeRuns(settings, [&]() {
+    tree = timecritical::MergeTreeBuilder().Build(
+      mesh.Points.data(), mesh.NumberOfPoints(), mesh.Triangles.data(), mesh.NumberOfTriangles());
+  });
+  ValidateTOM(input, tree.TOM);
+  figures.Levels = tree.Tree.LevelCount;
+  std::vector<double> positions;
+  for (uint32_t id : tree.TOM.VertexOrder)
+  {
+    positions.insert(positions.end(), &mesh.Points[3 * size_t(id)], &mesh.Points[3 * size_t(id)] + 3);
+  }
+  figures.AttributeSeconds = Seconds([&]() {
+    timecritical::ComputeMergeTree(tree.TOM.Mesh, positions.data(), tree.Tree.Level.data());
+  });
+  // The error each builder reports (quadric estimate, world units) at equal triangle counts.
+  auto errorAt = [&input](const TOMBuildResult& tom, double r) {
+    const TOMTraversal traversal(tom.Mesh);
+    const uint32_t n =
+      traversal.GetVertexCountForTriangles(traversal.GetTrianglesForResolution(r));
+    return tom.VertexCountError[n] / input.Diagonal;
+  };
+  for (double r : MergeTreeResolutions)
+  {
+    figures.MergeTreeError.push_back(errorAt(tree.TOM, r));
+    figures.GreedyError.push_back(errorAt(greedy, r));
+  }
+  return figures;
 }
 
 MemoryFigures MeasureMemory(const TOMMesh& tom)
@@ -975,6 +1026,7 @@ MeshReport MeasureMesh(const Settings& settings, const MeshSource& source)
   report.Build = MeasureBuild(settings, input, tom);
   ValidateTOM(input, tom);
   report.Memory = MeasureMemory(tom.Mesh);
+  report.MergeTree = MeasureMergeTree(settings, input, tom);
 
   report.Traversal = MeasureTraversal(settings, report.Name, tom.Mesh);
 
@@ -1021,6 +1073,38 @@ void PrintBuild(const std::vector<MeshReport>& reports, GoalLog& goals)
   table.Print(std::cout,
     "1. Build: TOM (full reduction) vs vtkQuadricDecimation and meshopt_simplify to 10% "
     "(median wall-clock s; speedup = their time / ours)");
+}
+
+void PrintMergeTree(const std::vector<MeshReport>& reports, GoalLog& goals)
+{
+  std::vector<std::string> header = { "mesh", "tris", "MT s", "attributes s", "MT Mtri/s",
+    "TOM Mtri/s", "levels", "goal", "status" };
+  for (double r : MergeTreeResolutions)
+  {
+    header.push_back("err/diag MT:TOM r=" + Fixed(r, 2));
+  }
+  Table table(header);
+  for (const MeshReport& m : reports)
+  {
+    const MergeTreeFigures& f = m.MergeTree;
+    const double t = static_cast<double>(m.Triangles);
+    std::vector<std::string> row = { m.Name, Count(m.Triangles), Fixed(f.Build.Median, 4),
+      Fixed(f.AttributeSeconds, 4), Fixed(Mtris(t, f.Build.Median), 3),
+      Fixed(Mtris(t, m.Build.Tom.Median), 3), Count(f.Levels) };
+    for (auto& cell : goals.Check(MergeTreeBuildGoal, Mtris(t, f.Build.Median), m.Name))
+    {
+      row.push_back(std::move(cell));
+    }
+    for (size_t i = 0; i < MergeTreeResolutions.size(); ++i)
+    {
+      row.push_back(Format("%.2e:%.2e", f.MergeTreeError[i], f.GreedyError[i]));
+    }
+    table.Add(std::move(row));
+  }
+  table.Print(std::cout,
+    "5. Merge tree (levels of independent collapses) vs greedy TOM: build (attributes = "
+    "ComputeMergeTree, included), levels, error each reports (quadric estimate / diagonal) at "
+    "r = fraction of triangles");
 }
 
 void PrintMemory(const std::vector<MeshReport>& reports, GoalLog& goals)
@@ -1118,6 +1202,24 @@ Json ToJson(const Hausdorff& h)
     .Set("symmetric", h.Symmetric());
 }
 
+Json MergeTreeJson(const MeshReport& m)
+{
+  const MergeTreeFigures& f = m.MergeTree;
+  Json errors = Json::Array();
+  for (size_t i = 0; i < MergeTreeResolutions.size(); ++i)
+  {
+    errors.Push(Json::Object()
+                  .Set("resolution", MergeTreeResolutions[i])
+                  .Set("merge_tree_error_over_diagonal", f.MergeTreeError[i])
+                  .Set("greedy_error_over_diagonal", f.GreedyError[i]));
+  }
+  return ToJson(f.Build)
+    .Set("mtris_per_s", Mtris(static_cast<double>(m.Triangles), f.Build.Median))
+    .Set("attributes_s", f.AttributeSeconds)
+    .Set("levels", f.Levels)
+    .Set("errors", std::move(errors));
+}
+
 Json ToJson(const MeshReport& m)
 {
   const double t = static_cast<double>(m.Triangles);
@@ -1178,7 +1280,8 @@ Json ToJson(const MeshReport& m)
     .Set("memory", std::move(memory))
     .Set("traversal", std::move(traversal))
     .Set("hausdorff", std::move(quality))
-    .Set("hausdorff_skipped", m.QualitySkipped.empty() ? Json() : Json(m.QualitySkipped));
+    .Set("hausdorff_skipped", m.QualitySkipped.empty() ? Json() : Json(m.QualitySkipped))
+    .Set("merge_tree", MergeTreeJson(m));
 }
 
 /// Medians over the meshes of the headline figures.
@@ -1364,6 +1467,7 @@ int Run(const Settings& settings)
   PrintMemory(reports, goals);
   PrintTraversal(reports, goals);
   PrintQuality(reports, goals);
+  PrintMergeTree(reports, goals);
   goals.PrintSummary(std::cout);
 
   Json meshes = Json::Array();
