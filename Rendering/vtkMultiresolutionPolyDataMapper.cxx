@@ -3,12 +3,16 @@
 
 #include "TOMIndexLayout.h"
 #include "TOMMesh.h"
+#include "MergeTree.h"
 #include "TOMTraversal.h"
+#include "ViewDependentRefinement.h"
+#include "vtkMergeTreeFieldData.h"
 #include "vtkTOMFieldData.h"
 
 #include "vtkActor.h"
 #include "vtkAppendPolyData.h"
 #include "vtkCellArray.h"
+#include "vtkCamera.h"
 #include "vtkCellData.h"
 #include "vtkCommand.h"
 #include "vtkCompositeDataIterator.h"
@@ -18,7 +22,10 @@
 #include "vtkHardwareSelector.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
+#include "vtkLight.h"
+#include "vtkLightCollection.h"
 #include "vtkMath.h"
+#include "vtkMatrix4x4.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLBufferObject.h"
@@ -43,8 +50,11 @@
 #include "vtk_glew.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <memory>
+#include <stdexcept>
 #include <vector>
 
 namespace
@@ -57,6 +67,22 @@ unsigned char GreyForLevel(int level)
 {
   const double grey = 0.25 + 0.75 * static_cast<double>(level) / (ColorLevels - 1);
   return static_cast<unsigned char>(std::lround(255.0 * grey));
+}
+
+/// Writes the display vertices of a front (plus base); returns how many.
+size_t WriteDisplayVertices(
+  const timecritical::ViewDependentRefinement& front, uint32_t base, uint32_t* out)
+{
+  size_t n = 0;
+  const uint32_t count = front.GetNumberOfVertices();
+  for (uint32_t v = 0; v < count; ++v)
+  {
+    if (front.IsDisplayVertex(v))
+    {
+      out[n++] = base + v;
+    }
+  }
+  return n;
 }
 
 template <typename T>
@@ -128,6 +154,14 @@ struct vtkMultiresolutionPolyDataMapper::Internals
     vtkIdType NumberOfTriangles = 0; // at full resolution
     double Bounds[6] = { 1, -1, 1, -1, 1, -1 };
     double Coarsest = 1.0;
+    // Leaves with a merge tree: their view-dependent front, and the merge-tree
+    // level of each vertex for the resolution map.
+    std::unique_ptr<timecritical::ViewDependentRefinement> Refinement;
+    std::vector<uint16_t> Levels;
+    uint16_t LevelCount = 0;
+    vtkIdType Splits = 0;
+    vtkIdType Merges = 0;
+    double RefinementTime = 0.0;
     double Resolution = 1.0;
     vtkIdType RenderedTriangles = 0;
     vtkIdType RenderedVertices = 0;
@@ -143,6 +177,7 @@ struct vtkMultiresolutionPolyDataMapper::Internals
   std::vector<std::pair<vtkSmartPointer<vtkDataObject>, vtkMTimeType>> Watched;
 
   vtkNew<vtkTOMFieldData> Reader;
+  vtkNew<vtkMergeTreeFieldData> TreeReader;
   // TOM arrays of all TOM objects (leaf point ids); the traversals view them.
   std::vector<uint32_t> Substitution;
   std::vector<uint32_t> Triangles;
@@ -182,6 +217,7 @@ struct vtkMultiresolutionPolyDataMapper::Internals
   vtkOpenGLRenderWindow* Window = nullptr; // holds our GL resources; cleared on release
 
   bool WarnedNonTOM = false;
+  bool WarnedBadTree = false;
   bool WarnedNonPolyData = false;
   vtkIdType VertexBufferBuildCount = 0;
   vtkIdType IndexBufferBuildCount = 0;
@@ -449,6 +485,43 @@ void vtkMultiresolutionPolyDataMapper::ReadObjects(vtkDataObject* input)
       object.NumberOfTriangles = static_cast<vtkIdType>(in.StaticTriangles.size() / 3) -
         static_cast<vtkIdType>(object.TriangleStart);
     }
+    if (object.IsTOM && vtkMergeTreeFieldData::HasMergeTreeArrays(poly))
+    {
+      if (in.TreeReader->Read(poly))
+      {
+        // The refinement keeps its own copy of the points (float, as drawn).
+        const timecritical::MergeTree& tree = in.TreeReader->GetTree();
+        const vtkIdType count = poly->GetNumberOfPoints();
+        std::vector<float> xyz(3 * static_cast<size_t>(count));
+        vtkDataArray* coordinates = poly->GetPoints()->GetData();
+        for (vtkIdType p = 0; p < count; ++p)
+        {
+          for (int k = 0; k < 3; ++k)
+          {
+            xyz[3 * p + k] = static_cast<float>(coordinates->GetComponent(p, k));
+          }
+        }
+        try
+        {
+          object.Refinement = std::make_unique<timecritical::ViewDependentRefinement>();
+          object.Refinement->Initialize(in.TreeReader->GetMesh(), tree, xyz.data());
+          object.Levels = tree.Level;
+          object.LevelCount = tree.LevelCount;
+        }
+        catch (const std::exception& e)
+        {
+          object.Refinement.reset();
+          vtkWarningMacro("Block " << object.FlatIndex << ": merge tree not usable (" << e.what()
+                                   << "); drawing it as a TOM.");
+        }
+      }
+      else if (!in.WarnedBadTree)
+      {
+        vtkWarningMacro("Block " << object.FlatIndex << " has invalid merge-tree arrays, drawing it "
+                                 << "as a TOM: " << in.TreeReader->GetErrorMessage());
+        in.WarnedBadTree = true;
+      }
+    }
     in.MaxObjectTriangles = std::max(in.MaxObjectTriangles, object.NumberOfTriangles);
     in.MaxSurfaceIndices += 3 * static_cast<size_t>(object.NumberOfTriangles);
     in.MaxWireIndices += object.IsTOM ? 6 * static_cast<size_t>(object.NumberOfTriangles)
@@ -461,7 +534,7 @@ void vtkMultiresolutionPolyDataMapper::ReadObjects(vtkDataObject* input)
     vertexOffset += object.NumberOfVertices;
     polyOffset += object.NumberOfPolys;
     parts.push_back(poly);
-    in.Objects.push_back(object);
+    in.Objects.push_back(std::move(object));
   }
   in.TotalVertices = vertexOffset;
 
@@ -615,6 +688,66 @@ bool vtkMultiresolutionPolyDataMapper::GetObjectIsTOM(vtkIdType i) const
 unsigned int vtkMultiresolutionPolyDataMapper::GetObjectFlatIndex(vtkIdType i) const
 {
   return this->IsValidObject(i) ? this->Internal->Objects[i].FlatIndex : 0u;
+}
+
+void vtkMultiresolutionPolyDataMapper::SetPixelThreshold(double tau)
+{
+  if (!(tau >= 0.0) || std::isinf(tau))
+  {
+    vtkErrorMacro("PixelThreshold must be a finite number >= 0, not " << tau << "; ignored.");
+    return;
+  }
+  if (tau != this->PixelThreshold)
+  {
+    this->PixelThreshold = tau;
+    ++this->Internal->ResolutionVersion; // render state, like the resolutions
+  }
+}
+
+void vtkMultiresolutionPolyDataMapper::SetSilhouetteFactor(double factor)
+{
+  if (!(factor > 0.0 && factor <= 1.0))
+  {
+    vtkErrorMacro("SilhouetteFactor must be in (0, 1], not " << factor << "; ignored.");
+    return;
+  }
+  this->SilhouetteFactor = factor;
+}
+
+void vtkMultiresolutionPolyDataMapper::SetHighlightFactor(double factor)
+{
+  if (!(factor > 0.0 && factor <= 1.0))
+  {
+    vtkErrorMacro("HighlightFactor must be in (0, 1], not " << factor << "; ignored.");
+    return;
+  }
+  this->HighlightFactor = factor;
+}
+
+vtkIdType vtkMultiresolutionPolyDataMapper::GetObjectRenderedVertices(vtkIdType i) const
+{
+  return this->IsValidObject(i) ? this->Internal->Objects[i].RenderedVertices : 0;
+}
+
+bool vtkMultiresolutionPolyDataMapper::GetObjectIsViewDependent(vtkIdType i) const
+{
+  return this->IsValidObject(i) && this->ViewDependentRefinement &&
+    this->Internal->Objects[i].Refinement != nullptr;
+}
+
+vtkIdType vtkMultiresolutionPolyDataMapper::GetObjectSplits(vtkIdType i) const
+{
+  return this->IsValidObject(i) ? this->Internal->Objects[i].Splits : 0;
+}
+
+vtkIdType vtkMultiresolutionPolyDataMapper::GetObjectMerges(vtkIdType i) const
+{
+  return this->IsValidObject(i) ? this->Internal->Objects[i].Merges : 0;
+}
+
+double vtkMultiresolutionPolyDataMapper::GetObjectRefinementTime(vtkIdType i) const
+{
+  return this->IsValidObject(i) ? this->Internal->Objects[i].RefinementTime : 0.0;
 }
 
 vtkIdType vtkMultiresolutionPolyDataMapper::GetObjectRenderedTriangles(vtkIdType i) const
@@ -791,6 +924,8 @@ void vtkMultiresolutionPolyDataMapper::RenderPiece(vtkRenderer* ren, vtkActor* a
     return;
   }
 
+  this->RefineObjects(ren, act);
+
   // As vtkOpenGLPolyDataMapper::RenderPiece, on the merged leaves.
   this->UpdateCameraShiftScale(ren, act);
   this->RenderPieceStart(ren, act);
@@ -805,6 +940,134 @@ void vtkMultiresolutionPolyDataMapper::RenderPiece(vtkRenderer* ren, vtkActor* a
   {
     this->NumberOfDrawCalls += this->Primitives[i].IBO->IndexCount > 0;
     this->NumberOfDrawCalls += this->SelectionPrimitives[i].IBO->IndexCount > 0;
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkMultiresolutionPolyDataMapper::RefineObjects(vtkRenderer* ren, vtkActor* act)
+{
+  Internals& in = *this->Internal;
+  this->RefinementTime = 0.0;
+  bool any = false;
+  for (auto& object : in.Objects)
+  {
+    object.Splits = object.Merges = 0;
+    object.RefinementTime = 0.0;
+    any = any || (object.Refinement && object.Resolution > 0.0);
+  }
+  if (!any || !this->ViewDependentRefinement)
+  {
+    return;
+  }
+
+  // The view in the leaves' own coordinates (all share the actor's matrix).
+  double toObject[16];
+  vtkMatrix4x4::Invert(act->GetMatrix()->GetData(), toObject);
+  auto point = [&](const double w[3], double o[3])
+  {
+    for (int r = 0; r < 3; ++r)
+    {
+      o[r] = toObject[4 * r] * w[0] + toObject[4 * r + 1] * w[1] + toObject[4 * r + 2] * w[2] +
+        toObject[4 * r + 3];
+    }
+  };
+  auto direction = [&](const double w[3], double o[3])
+  {
+    for (int r = 0; r < 3; ++r)
+    {
+      o[r] = toObject[4 * r] * w[0] + toObject[4 * r + 1] * w[1] + toObject[4 * r + 2] * w[2];
+    }
+    vtkMath::Normalize(o);
+  };
+  vtkCamera* camera = ren->GetActiveCamera();
+  timecritical::RefinementView view;
+  point(camera->GetPosition(), view.Eye);
+  direction(camera->GetDirectionOfProjection(), view.Direction);
+  view.Parallel = camera->GetParallelProjection() != 0;
+  int width = 0, height = 0;
+  ren->GetTiledSize(&width, &height);
+  view.ViewportHeight = std::max(height, 1);
+  view.ViewAngle = camera->GetViewAngle();
+  // World lengths to object lengths: the actor's uniform scale (cube root of
+  // the determinant for the rare non-uniform case).
+  const double scale = std::cbrt(std::abs(act->GetMatrix()->Determinant()));
+  view.ParallelScale = camera->GetParallelScale() / (scale > 0.0 ? scale : 1.0);
+  double planes[24];
+  camera->GetFrustumPlanes(ren->GetTiledAspectRatio(), planes);
+  const double* model = act->GetMatrix()->GetData();
+  view.NumberOfFrustumPlanes = 6;
+  for (int i = 0; i < 6; ++i)
+  {
+    // A plane p (world) is p M in object coordinates; renormalized so that
+    // distances stay in object units.
+    double* o = view.FrustumPlanes[i];
+    for (int c = 0; c < 4; ++c)
+    {
+      o[c] = planes[4 * i] * model[c] + planes[4 * i + 1] * model[4 + c] +
+        planes[4 * i + 2] * model[8 + c] + planes[4 * i + 3] * model[12 + c];
+    }
+    const double norm = std::sqrt(o[0] * o[0] + o[1] * o[1] + o[2] * o[2]);
+    for (int c = 0; c < 4; ++c)
+    {
+      o[c] = norm > 0.0 ? o[c] / norm : 0.0;
+    }
+  }
+  // Towards the first switched-on light; a headlight when there is none.
+  double toLight[3] = { -view.Direction[0], -view.Direction[1], -view.Direction[2] };
+  vtkLightCollection* lights = ren->GetLights();
+  vtkCollectionSimpleIterator it;
+  lights->InitTraversal(it);
+  while (vtkLight* light = lights->GetNextLight(it))
+  {
+    if (light->GetSwitch())
+    {
+      double position[3], focal[3], world[3];
+      light->GetTransformedPosition(position);
+      light->GetTransformedFocalPoint(focal);
+      for (int k = 0; k < 3; ++k)
+      {
+        world[k] = position[k] - focal[k];
+      }
+      if (vtkMath::Norm(world) > 0.0)
+      {
+        direction(world, toLight);
+      }
+      break;
+    }
+  }
+  std::copy(toLight, toLight + 3, view.LightDirection);
+
+  bool changed = false;
+  for (auto& object : in.Objects)
+  {
+    if (!object.Refinement || !(object.Resolution > 0.0))
+    {
+      continue; // culled objects keep their front for when they come back
+    }
+    timecritical::ViewDependentRefinement& front = *object.Refinement;
+    front.SetView(view);
+    front.SetPixelThreshold(this->PixelThreshold);
+    front.SetBackFaceSimplification(this->BackFaceSimplification);
+    front.SetSilhouetteRefinement(this->SilhouetteRefinement);
+    front.SetSilhouetteFactor(this->SilhouetteFactor);
+    front.SetHighlightRefinement(this->HighlightRefinement);
+    front.SetHighlightFactor(this->HighlightFactor);
+    const auto start = std::chrono::steady_clock::now();
+    const timecritical::RefinementStatistics& statistics = this->RefinementMode == FIXED_ACCURACY
+      ? front.UpdateFixedAccuracy()
+      : front.UpdateBudget(static_cast<uint32_t>(
+          std::min<double>(std::lround(object.Resolution * object.NumberOfTriangles),
+            static_cast<double>(object.NumberOfTriangles))));
+    object.RefinementTime =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    object.Splits = statistics.Splits;
+    object.Merges = statistics.Merges;
+    this->RefinementTime += object.RefinementTime;
+    changed = changed || statistics.Splits > 0 || statistics.Merges > 0;
+  }
+  if (changed)
+  {
+    ++in.ResolutionVersion; // the index buffer follows the fronts
   }
 }
 
@@ -937,7 +1200,39 @@ void vtkMultiresolutionPolyDataMapper::FillIndexBuffer(vtkRenderer* ren, vtkActo
     }
     const uint32_t base = static_cast<uint32_t>(object.VertexOffset);
     const vtkIdType firstCell = in.PolyCellBase + object.PolyOffset;
-    if (object.IsTOM)
+    if (object.Refinement && this->ViewDependentRefinement)
+    {
+      // The view-dependent front, refined by RefineObjects() for this render.
+      const timecritical::ViewDependentRefinement& front = *object.Refinement;
+      const uint32_t triangles = front.GetNumberOfDisplayTriangles();
+      if (representation == VTK_WIREFRAME)
+      {
+        timecritical::WriteTriangleEdges(front.GetTriangles(), triangles, base, indices + n);
+        n += 6 * static_cast<size_t>(triangles);
+      }
+      else if (representation == VTK_POINTS && !corners)
+      {
+        n += WriteDisplayVertices(front, base, indices + n);
+      }
+      else
+      {
+        front.CopyTriangles(indices + n, static_cast<uint32_t>((capacity - n) / 3), base);
+        n += 3 * static_cast<size_t>(triangles);
+      }
+      if (cellData)
+      {
+        // TOM triangle t is cell t of the leaf.
+        const size_t perTriangle = representation == VTK_SURFACE ? 1 : 3;
+        const uint32_t* ids = front.GetTriangleIds();
+        for (uint32_t t = 0; t < triangles; ++t)
+        {
+          addCells(firstCell + ids[t], perTriangle);
+        }
+      }
+      object.RenderedTriangles = triangles;
+      object.RenderedVertices = front.GetNumberOfDisplayVertices();
+    }
+    else if (object.IsTOM)
     {
       const timecritical::TOMTraversal& traversal = object.Traversal;
       const uint32_t vertexCount = traversal.GetVertexCountForTriangles(
@@ -1021,7 +1316,12 @@ void vtkMultiresolutionPolyDataMapper::FillIndexBuffer(vtkRenderer* ren, vtkActo
       object.RenderedTriangles = object.NumberOfTriangles;
       object.RenderedVertices = object.NumberOfVertices;
     }
-    if (vertexVisibility)
+    if (vertexVisibility && object.Refinement && this->ViewDependentRefinement)
+    {
+      vertexIndices +=
+        WriteDisplayVertices(*object.Refinement, base, in.VertexIndices.data() + vertexIndices);
+    }
+    else if (vertexVisibility)
     {
       const auto count = static_cast<size_t>(object.RenderedVertices);
       timecritical::WriteVertexRange(count, base, in.VertexIndices.data() + vertexIndices);
@@ -1030,7 +1330,27 @@ void vtkMultiresolutionPolyDataMapper::FillIndexBuffer(vtkRenderer* ren, vtkActo
     this->RenderedTriangles += object.RenderedTriangles;
     this->RenderedVertices += object.RenderedVertices;
 
-    if (in.ResolutionColors && this->ColorByResolution)
+    if (in.ResolutionColors && this->ColorByResolution && object.Refinement &&
+      this->ViewDependentRefinement)
+    {
+      // Per vertex, by merge-tree level: only the display vertices are drawn,
+      // so the greys follow the front without being rewritten.
+      if (object.ColorLevel != ColorLevels)
+      {
+        object.ColorLevel = ColorLevels;
+        unsigned char* rgba = in.ResolutionColors->GetPointer(4 * object.VertexOffset);
+        const double levels = std::max<double>(object.LevelCount, 1);
+        for (vtkIdType v = 0; v < object.NumberOfVertices; ++v, rgba += 4)
+        {
+          const double finest = 1.0 - std::min<double>(object.Levels[v], levels) / levels;
+          rgba[0] = rgba[1] = rgba[2] =
+            GreyForLevel(static_cast<int>(std::lround(finest * (ColorLevels - 1))));
+          rgba[3] = 255;
+        }
+        object.ColorDirty = true;
+      }
+    }
+    else if (in.ResolutionColors && this->ColorByResolution)
     {
       const double fraction = object.NumberOfTriangles > 0
         ? static_cast<double>(object.RenderedTriangles) / object.NumberOfTriangles
@@ -1238,6 +1558,16 @@ void vtkMultiresolutionPolyDataMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "RenderedTriangles: " << this->RenderedTriangles << "\n";
   os << indent << "RenderedVertices: " << this->RenderedVertices << "\n";
   os << indent << "NumberOfDrawCalls: " << this->NumberOfDrawCalls << "\n";
+  os << indent << "ViewDependentRefinement: " << this->ViewDependentRefinement << "\n";
+  os << indent << "RefinementMode: "
+     << (this->RefinementMode == FIXED_ACCURACY ? "FIXED_ACCURACY" : "BUDGET") << "\n";
+  os << indent << "PixelThreshold: " << this->PixelThreshold << "\n";
+  os << indent << "BackFaceSimplification: " << this->BackFaceSimplification << "\n";
+  os << indent << "SilhouetteRefinement: " << this->SilhouetteRefinement
+     << " (factor " << this->SilhouetteFactor << ")\n";
+  os << indent << "HighlightRefinement: " << this->HighlightRefinement
+     << " (factor " << this->HighlightFactor << ")\n";
+  os << indent << "RefinementTime: " << this->RefinementTime << "\n";
   const size_t shown = std::min<size_t>(in.Objects.size(), 20);
   for (size_t i = 0; i < shown; ++i)
   {

@@ -37,6 +37,19 @@
  * follows the resolutions, and only the vertices of objects whose level
  * changed are rewritten in place. Turning it off restores normal coloring.
  *
+ * View-dependent refinement: a leaf that also carries a merge tree (the
+ * output of vtkMergeTreeBuilder) is drawn as a view-dependent front
+ * (timecritical::ViewDependentRefinement, Xia, El-Sana & Varshney) refined
+ * for the renderer's active camera at every render, from the previous front.
+ * In BUDGET mode (default) the front gets the object's resolution times its
+ * triangle count, spent where the projected error is largest; in
+ * FIXED_ACCURACY mode it is refined until no projected error exceeds
+ * PixelThreshold pixels, whatever it costs (a resolution of 0 still culls).
+ * The vertex buffer stays static: only the index buffer follows the front.
+ * With ColorByResolution such an object is drawn in the grey of each
+ * vertex's merge-tree level (lighter = finer), which shows the local level of
+ * detail.
+ *
  * Leaves that are not valid TOMs render at full resolution with one warning
  * per mapper; their vertices, lines and strips are always drawn in full (in
  * extra draw calls, whatever their resolution) and edge flags are ignored.
@@ -102,6 +115,7 @@ public:
   bool GetObjectIsTOM(vtkIdType i) const;
   unsigned int GetObjectFlatIndex(vtkIdType i) const; ///< composite flat index (0 for polydata)
   vtkIdType GetObjectRenderedTriangles(vtkIdType i) const; ///< drawn by the last render
+  vtkIdType GetObjectRenderedVertices(vtkIdType i) const;  ///< drawn by the last render
   ///@}
 
   ///@{
@@ -117,6 +131,71 @@ public:
   vtkGetMacro(ColorByResolution, bool);
   vtkBooleanMacro(ColorByResolution, bool);
   ///@}
+
+  enum RefinementModes
+  {
+    BUDGET = 0,        ///< triangle budget = resolution x full triangle count
+    FIXED_ACCURACY = 1 ///< refine until the projected error is below PixelThreshold
+  };
+
+  ///@{
+  /**
+   * View-dependent refinement of leaves that carry a merge tree (default on).
+   * Off: they are drawn as plain TOMs (uniform prefix at their resolution).
+   */
+  vtkSetMacro(ViewDependentRefinement, bool);
+  vtkGetMacro(ViewDependentRefinement, bool);
+  vtkBooleanMacro(ViewDependentRefinement, bool);
+  vtkSetClampMacro(RefinementMode, int, BUDGET, FIXED_ACCURACY);
+  vtkGetMacro(RefinementMode, int);
+  void SetRefinementModeToBudget() { this->SetRefinementMode(BUDGET); }
+  void SetRefinementModeToFixedAccuracy() { this->SetRefinementMode(FIXED_ACCURACY); }
+  ///@}
+
+  ///@{
+  /**
+   * Screen-space error threshold tau, pixels (FIXED_ACCURACY mode), >= 0;
+   * default 1. Near silhouettes and highlights it is multiplied by their factors.
+   */
+  void SetPixelThreshold(double tau);
+  vtkGetMacro(PixelThreshold, double);
+  ///@}
+
+  ///@{
+  /// Regions whose normal cone faces away from the viewer are not refined (default on).
+  vtkSetMacro(BackFaceSimplification, bool);
+  vtkGetMacro(BackFaceSimplification, bool);
+  vtkBooleanMacro(BackFaceSimplification, bool);
+  ///@}
+
+  ///@{
+  /// Finer threshold (tau times the factor, in (0, 1]) near silhouettes (default on, 0.25).
+  vtkSetMacro(SilhouetteRefinement, bool);
+  vtkGetMacro(SilhouetteRefinement, bool);
+  vtkBooleanMacro(SilhouetteRefinement, bool);
+  void SetSilhouetteFactor(double factor);
+  vtkGetMacro(SilhouetteFactor, double);
+  ///@}
+
+  ///@{
+  /// Finer threshold near specular highlights of the first light (default on, 0.5).
+  vtkSetMacro(HighlightRefinement, bool);
+  vtkGetMacro(HighlightRefinement, bool);
+  vtkBooleanMacro(HighlightRefinement, bool);
+  void SetHighlightFactor(double factor);
+  vtkGetMacro(HighlightFactor, double);
+  ///@}
+
+  ///@{
+  /// Per-object refinement statistics of the last render (0 for objects without a merge tree).
+  bool GetObjectIsViewDependent(vtkIdType i) const; ///< carries a merge tree and refinement is on
+  vtkIdType GetObjectSplits(vtkIdType i) const;
+  vtkIdType GetObjectMerges(vtkIdType i) const;
+  double GetObjectRefinementTime(vtkIdType i) const; ///< seconds
+  ///@}
+
+  /// Seconds spent refining all view-dependent objects in the last render.
+  vtkGetMacro(RefinementTime, double);
 
   /// Bounds of the whole input (all leaves).
   void ComputeBounds() override;
@@ -176,6 +255,15 @@ protected:
   vtkIdType RenderedVertices = 0;
   int NumberOfDrawCalls = 0;
   bool ColorByResolution = false;
+  bool ViewDependentRefinement = true;
+  int RefinementMode = BUDGET;
+  double PixelThreshold = 1.0;
+  bool BackFaceSimplification = true;
+  bool SilhouetteRefinement = true;
+  double SilhouetteFactor = 0.25;
+  bool HighlightRefinement = true;
+  double HighlightFactor = 0.5;
+  double RefinementTime = 0.0;
 
 private:
   vtkMultiresolutionPolyDataMapper(const vtkMultiresolutionPolyDataMapper&) = delete;
@@ -184,6 +272,7 @@ private:
   bool IsValidObject(vtkIdType i) const; ///< with an error when not
   void ReadObjects(vtkDataObject* input);
   void FillIndexBuffer(vtkRenderer* ren, vtkActor* act);
+  void RefineObjects(vtkRenderer* ren, vtkActor* act);
   void UploadCellTextures(vtkRenderer* ren, size_t primitives);
   void UploadResolutionColors();
 

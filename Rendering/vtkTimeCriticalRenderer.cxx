@@ -110,6 +110,11 @@ struct vtkTimeCriticalRenderer::Internals
     PreviousResolution, Velocity, Eccentricity, Importances;
   std::vector<char> Culled;
   std::vector<vtkIdType> Triangles;
+  // Refinement statistics per object, and the fronts' time of the last frame.
+  std::vector<vtkIdType> Vertices, Splits, Merges;
+  std::vector<double> RefinementTimes;
+  std::vector<char> ViewDependent;
+  double LastRefinementTime = 0.0;
 
   // Visible objects, compacted for the policies.
   std::vector<std::size_t> Visible;
@@ -392,6 +397,82 @@ double vtkTimeCriticalRenderer::GetObjectPixels(vtkIdType object) const
                                                                              : NaN;
 }
 
+namespace
+{
+template <typename T>
+T PerObject(const std::vector<T>& values, vtkIdType object, T bad)
+{
+  return object >= 0 && static_cast<std::size_t>(object) < values.size() ? values[object] : bad;
+}
+}
+
+bool vtkTimeCriticalRenderer::GetObjectIsViewDependent(vtkIdType object) const
+{
+  return PerObject<char>(this->Internal->ViewDependent, object, 0) != 0;
+}
+
+vtkIdType vtkTimeCriticalRenderer::GetObjectVertices(vtkIdType object) const
+{
+  return PerObject<vtkIdType>(this->Internal->Vertices, object, -1);
+}
+
+vtkIdType vtkTimeCriticalRenderer::GetObjectSplits(vtkIdType object) const
+{
+  return PerObject<vtkIdType>(this->Internal->Splits, object, -1);
+}
+
+vtkIdType vtkTimeCriticalRenderer::GetObjectMerges(vtkIdType object) const
+{
+  return PerObject<vtkIdType>(this->Internal->Merges, object, -1);
+}
+
+double vtkTimeCriticalRenderer::GetObjectRefinementTime(vtkIdType object) const
+{
+  return PerObject<double>(this->Internal->RefinementTimes, object, NaN);
+}
+
+void vtkTimeCriticalRenderer::SetPixelThreshold(double tau)
+{
+  if (!(tau >= 0.0) || std::isinf(tau))
+  {
+    vtkErrorMacro("PixelThreshold must be a finite number >= 0, not " << tau << "; ignored.");
+    return;
+  }
+  if (this->PixelThreshold != tau)
+  {
+    this->PixelThreshold = tau;
+    this->Modified();
+  }
+}
+
+void vtkTimeCriticalRenderer::SetSilhouetteFactor(double factor)
+{
+  if (!(factor > 0.0 && factor <= 1.0))
+  {
+    vtkErrorMacro("SilhouetteFactor must be in (0, 1], not " << factor << "; ignored.");
+    return;
+  }
+  if (this->SilhouetteFactor != factor)
+  {
+    this->SilhouetteFactor = factor;
+    this->Modified();
+  }
+}
+
+void vtkTimeCriticalRenderer::SetHighlightFactor(double factor)
+{
+  if (!(factor > 0.0 && factor <= 1.0))
+  {
+    vtkErrorMacro("HighlightFactor must be in (0, 1], not " << factor << "; ignored.");
+    return;
+  }
+  if (this->HighlightFactor != factor)
+  {
+    this->HighlightFactor = factor;
+    this->Modified();
+  }
+}
+
 vtkActor* vtkTimeCriticalRenderer::GetObjectActor(vtkIdType object) const
 {
   const auto& in = *this->Internal;
@@ -571,6 +652,14 @@ void vtkTimeCriticalRenderer::GatherObjects()
       }
       continue;
     }
+    mapper->SetViewDependentRefinement(this->ViewDependentRefinement);
+    mapper->SetRefinementMode(this->RefinementMode);
+    mapper->SetPixelThreshold(this->PixelThreshold);
+    mapper->SetBackFaceSimplification(this->BackFaceSimplification);
+    mapper->SetSilhouetteRefinement(this->SilhouetteRefinement);
+    mapper->SetSilhouetteFactor(this->SilhouetteFactor);
+    mapper->SetHighlightRefinement(this->HighlightRefinement);
+    mapper->SetHighlightFactor(this->HighlightFactor);
     mapper->UpdateObjects();
     Internals::ActorEntry entry;
     entry.Actor = actor;
@@ -596,6 +685,11 @@ void vtkTimeCriticalRenderer::GatherObjects()
   }
   in.Culled.resize(n);
   in.Triangles.resize(n);
+  in.Vertices.resize(n);
+  in.Splits.resize(n);
+  in.Merges.resize(n);
+  in.RefinementTimes.resize(n);
+  in.ViewDependent.resize(n);
   for (const auto& entry : in.Actors)
   {
     const double importance = this->GetImportance(entry.Actor);
@@ -608,6 +702,7 @@ void vtkTimeCriticalRenderer::GatherObjects()
       in.MaxVertices[o] = static_cast<double>(entry.Mapper->GetObjectNumberOfVertices(index));
       in.Coarsest[o] = entry.Mapper->GetObjectCoarsestResolution(index);
       in.Importances[o] = importance;
+      in.ViewDependent[o] = entry.Mapper->GetObjectIsViewDependent(index) ? 1 : 0;
     }
   }
 }
@@ -747,6 +842,26 @@ void vtkTimeCriticalRenderer::ChooseResolutions(bool still)
     in.MaxTime[k] = correction * cold * in.Model.MaxTime(in.MaxTriangles[o]);
     in.MinResolution[k] = in.Model.MinimumResolution(in.MaxTriangles[o], in.Pixels[o], in.Coarsest[o]);
   }
+  // Fixed accuracy: fronts take the triangles their threshold needs; their
+  // last count is fixed cost, and a zero cost keeps the policy from
+  // culling or coarsening them.
+  double fixedFronts = 0.0;
+  if (this->RefinementMode == FIXED_ACCURACY)
+  {
+    for (std::size_t k = 0; k < m; ++k)
+    {
+      const std::size_t o = in.Visible[k];
+      if (in.ViewDependent[o])
+      {
+        const double last = std::isfinite(in.PreviousResolution[o])
+          ? static_cast<double>(in.Triangles[o])
+          : in.Coarsest[o] * in.MaxTriangles[o];
+        fixedFronts += in.Model.MaxTime(last);
+        in.MaxTime[k] = 0.0;
+        in.MinResolution[k] = 1.0;
+      }
+    }
+  }
 
   // Draw calls: one per multiresolution mapper with a visible object.
   double mapperCalls = 0.0;
@@ -763,7 +878,8 @@ void vtkTimeCriticalRenderer::ChooseResolutions(bool still)
   }
   timecritical::FrameCostModel::FrameLoad load = in.Load;
   load.DrawCalls += mapperCalls;
-  const double fixed = correction * in.Model.FixedTime(load, in.TotalPixels);
+  const double fixed =
+    correction * (in.Model.FixedTime(load, in.TotalPixels) + fixedFronts) + in.LastRefinementTime;
 
   timecritical::PolicyInput input;
   input.Count = m;
@@ -814,7 +930,12 @@ void vtkTimeCriticalRenderer::FinishFrame()
     for (std::size_t i = 0; i < entry.Count; ++i)
     {
       const std::size_t o = entry.First + i;
-      in.Triangles[o] = entry.Mapper->GetObjectRenderedTriangles(static_cast<vtkIdType>(i));
+      const auto index = static_cast<vtkIdType>(i);
+      in.Triangles[o] = entry.Mapper->GetObjectRenderedTriangles(index);
+      in.Vertices[o] = entry.Mapper->GetObjectRenderedVertices(index);
+      in.Splits[o] = entry.Mapper->GetObjectSplits(index);
+      in.Merges[o] = entry.Mapper->GetObjectMerges(index);
+      in.RefinementTimes[o] = entry.Mapper->GetObjectRefinementTime(index);
       objectTriangles += static_cast<double>(in.Triangles[o]);
       // Culled objects restart from rmin when they come back (NaN = new).
       history.Resolution[i] = in.Culled[o] ? NaN : in.Resolution[o];
@@ -832,6 +953,12 @@ void vtkTimeCriticalRenderer::FinishFrame()
     entry.second.Seen = false;
   }
 
+  this->RefinementTime = 0.0;
+  for (const auto& entry : in.Actors)
+  {
+    this->RefinementTime += entry.Mapper->GetRefinementTime();
+  }
+  in.LastRefinementTime = this->RefinementTime;
   this->ObjectTrianglesDrawn = static_cast<vtkIdType>(objectTriangles);
   this->TrianglesDrawn = static_cast<vtkIdType>(objectTriangles + in.Load.OtherTriangles);
   timecritical::FrameCostModel::FrameLoad load = in.Load;
@@ -956,6 +1083,16 @@ void vtkTimeCriticalRenderer::PrintSelf(ostream& os, vtkIndent indent)
      << this->GetPixelCost() << ", " << this->GetCostMargin() << "\n";
   os << indent << "SafetyFactor: " << this->SafetyFactor << "\n";
   os << indent << "NewObjectCostFactor: " << this->NewObjectCostFactor << "\n";
+  os << indent << "ViewDependentRefinement: " << this->ViewDependentRefinement << "\n";
+  os << indent << "RefinementMode: "
+     << (this->RefinementMode == FIXED_ACCURACY ? "FIXED_ACCURACY" : "BUDGET") << "\n";
+  os << indent << "PixelThreshold: " << this->PixelThreshold << "\n";
+  os << indent << "BackFaceSimplification: " << this->BackFaceSimplification << "\n";
+  os << indent << "SilhouetteRefinement: " << this->SilhouetteRefinement << " (factor "
+     << this->SilhouetteFactor << ")\n";
+  os << indent << "HighlightRefinement: " << this->HighlightRefinement << " (factor "
+     << this->HighlightFactor << ")\n";
+  os << indent << "RefinementTime: " << this->RefinementTime << "\n";
   os << indent << "PredictedFrameTime: " << this->PredictedFrameTime << "\n";
   os << indent << "MeasuredFrameTime: " << this->MeasuredFrameTime << "\n";
   os << indent << "OptimizationTime: " << this->OptimizationTime << "\n";

@@ -29,6 +29,18 @@
  * StillUpdateRateThreshold then draws at full resolution, so the view is
  * coarse while moving and exact at rest with any VTK interactor.
  *
+ * View-dependent refinement: objects that carry a merge tree (built by
+ * vtkMergeTreeBuilder) are drawn as view-dependent fronts (see
+ * vtkMultiresolutionPolyDataMapper), with the refinement settings of this
+ * renderer, which it applies to every multiresolution mapper it draws. In
+ * BUDGET mode (default) such an object's triangle budget is the resolution
+ * the policy chose times its triangle count, spent where the projected error
+ * is largest: the optimizer decides how many triangles, the refinement where
+ * they go. In FIXED_ACCURACY mode (Pasman & Jansen's fixed accuracy) it is
+ * refined until no projected error exceeds PixelThreshold, whatever that
+ * costs; its triangles of the previous frame then count as fixed cost. The
+ * refinement time of the previous frame counts in the fixed cost too.
+ *
  * Objects are numbered per frame: the visible actors in the renderer's prop
  * order, then the objects of each mapper in order; GetObjectActor() and
  * GetObjectIndex() map a number back.
@@ -239,6 +251,47 @@ public:
   vtkIdType GetObjectIndex(vtkIdType object) const;       ///< index within the actor's mapper
   ///@}
 
+  ///@{
+  /// View-dependent refinement settings, applied to every multiresolution mapper drawn.
+  enum RefinementModes
+  {
+    BUDGET = 0,        ///< front refined to the policy's triangle budget
+    FIXED_ACCURACY = 1 ///< front refined to PixelThreshold
+  };
+  vtkSetMacro(ViewDependentRefinement, bool);
+  vtkGetMacro(ViewDependentRefinement, bool);
+  vtkBooleanMacro(ViewDependentRefinement, bool);
+  vtkSetClampMacro(RefinementMode, int, BUDGET, FIXED_ACCURACY);
+  vtkGetMacro(RefinementMode, int);
+  void SetRefinementModeToBudget() { this->SetRefinementMode(BUDGET); }
+  void SetRefinementModeToFixedAccuracy() { this->SetRefinementMode(FIXED_ACCURACY); }
+  void SetPixelThreshold(double tau); ///< pixels, finite and >= 0 (default 1)
+  vtkGetMacro(PixelThreshold, double);
+  vtkSetMacro(BackFaceSimplification, bool);
+  vtkGetMacro(BackFaceSimplification, bool);
+  vtkBooleanMacro(BackFaceSimplification, bool);
+  vtkSetMacro(SilhouetteRefinement, bool);
+  vtkGetMacro(SilhouetteRefinement, bool);
+  vtkBooleanMacro(SilhouetteRefinement, bool);
+  void SetSilhouetteFactor(double factor); ///< in (0, 1], default 0.25
+  vtkGetMacro(SilhouetteFactor, double);
+  vtkSetMacro(HighlightRefinement, bool);
+  vtkGetMacro(HighlightRefinement, bool);
+  vtkBooleanMacro(HighlightRefinement, bool);
+  void SetHighlightFactor(double factor); ///< in (0, 1], default 0.5
+  vtkGetMacro(HighlightFactor, double);
+  ///@}
+
+  ///@{
+  /// Refinement statistics of the last frame.
+  vtkGetMacro(RefinementTime, double); ///< seconds spent refining all fronts
+  bool GetObjectIsViewDependent(vtkIdType object) const;
+  vtkIdType GetObjectVertices(vtkIdType object) const; ///< display vertices drawn, -1 for a bad index
+  vtkIdType GetObjectSplits(vtkIdType object) const;   ///< vertex splits, -1 for a bad index
+  vtkIdType GetObjectMerges(vtkIdType object) const;   ///< edge collapses, -1 for a bad index
+  double GetObjectRefinementTime(vtkIdType object) const; ///< seconds, NaN for a bad index
+  ///@}
+
   void DeviceRender() override;
 
 protected:
@@ -263,6 +316,15 @@ protected:
   bool Calibrated = false;
   double SafetyFactor = 1.5;
   double NewObjectCostFactor = 2.0;
+  bool ViewDependentRefinement = true;
+  int RefinementMode = BUDGET;
+  double PixelThreshold = 1.0;
+  bool BackFaceSimplification = true;
+  bool SilhouetteRefinement = true;
+  double SilhouetteFactor = 0.25;
+  bool HighlightRefinement = true;
+  double HighlightFactor = 0.5;
+  double RefinementTime = 0.0;
 
   double PredictedFrameTime = 0.0;
   double FixedFrameTime = 0.0;
