@@ -388,10 +388,10 @@ MergeTree ComputeMergeTree(const TOMMesh& tom, const double* points, const uint1
       children.begin());
   };
 
-  // Monotonicity and levels over "must be split first" (requirements point to
-  // smaller ids, so one pass from the finest event suffices): e_v needs its
-  // previous sibling (or e_u), and for every dependency n the children of n
-  // below v (or e_n); the first child of n above v needs e_v.
+  // Monotonicity and levels over "must be split first" (ViewDependentRefinement's
+  // rule; requirements point to smaller ids, so one pass from the finest event
+  // suffices): e_v needs its previous sibling (or e_u) and e_n of every
+  // dependency n; the first child of n above v needs e_v.
   std::vector<uint32_t> depth(N, 0);
   const bool deriveLevels = levels == nullptr;
   for (uint32_t v = N; v-- > B;)
@@ -427,15 +427,9 @@ MergeTree ComputeMergeTree(const TOMMesh& tom, const double* points, const uint1
     }
     for (uint32_t i = 0; i < rowSize; ++i)
     {
-      const uint32_t n = row[i];
-      const size_t above = firstChildAbove(n, v);
-      if (above > childOffsets[n])
+      if (row[i] >= B)
       {
-        push(children[above - 1]);
-      }
-      else if (n >= B)
-      {
-        push(n);
+        push(row[i]);
       }
     }
   }

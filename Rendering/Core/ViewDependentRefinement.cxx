@@ -95,8 +95,30 @@ void ViewDependentRefinement::InitializeImpl(
   this->B = b;
   this->T = nt;
   this->Parent = tom.Substitution;
-  this->DependencyOffsets = tree.DependencyOffsets;
-  this->Dependencies = tree.Dependencies;
+  // Requirement rows: the merge tree's dependency rows (the vertices around
+  // u and v just before e_v), and their transpose for the merge queue.
+  this->ReqOffsets = tree.DependencyOffsets;
+  this->Req = tree.Dependencies;
+  this->RevOffsets.assign(size_t(n) + 1, 0);
+  for (uint32_t x : this->Req)
+  {
+    ++this->RevOffsets[size_t(x) + 1];
+  }
+  for (uint32_t v = 0; v < n; ++v)
+  {
+    this->RevOffsets[size_t(v) + 1] += this->RevOffsets[v];
+  }
+  this->Rev.assign(this->Req.size(), 0);
+  {
+    std::vector<uint32_t> fill(this->RevOffsets.begin(), this->RevOffsets.end() - 1);
+    for (uint32_t v = b; v < n; ++v) // ascending rows of each vertex
+    {
+      for (uint32_t i = this->ReqOffsets[v]; i < this->ReqOffsets[size_t(v) + 1]; ++i)
+      {
+        this->Rev[fill[this->Req[i]]++] = v;
+      }
+    }
+  }
 
   this->ChildOffsets.assign(size_t(n) + 1, 0);
   this->Children.assign(n - b, 0);
@@ -194,18 +216,27 @@ void ViewDependentRefinement::InitializeImpl(
 
   this->Active.assign(n, 0);
   this->ActiveChildren.assign(n, 0);
+  this->RequiredBy.assign(n, 0);
   this->Display.assign(3 * size_t(nt), 0);
   this->DisplayId.assign(nt, 0);
   this->DisplayPos.assign(nt, None);
+  this->SplitList.assign(n, 0);
+  this->SplitListPos.assign(n, None);
+  this->MergeList.assign(n, 0);
+  this->MergeListPos.assign(n, None);
+  this->KeyCache.assign(n, 0.0f);
+  this->KeyFrame.assign(n, 0);
+  this->Queued.assign(n, 0);
+  this->Touched.assign(n, 0);
+  this->Frame = 0;
   this->Stack.assign(n, 0);
   this->Work.assign(3 * size_t(n) + 1, 0);
-  this->SplitHeap.assign(n, 0);
-  this->MergeHeap.assign(n, 0);
-  this->SplitPos.assign(n, None);
-  this->MergePos.assign(n, None);
-  this->Key.assign(n, 0.0);
+  this->MergeQueue.assign(n, 0);
+  // Each vertex enters a budget heap once per update, plus re-offers after
+  // undone overshoots (bounded below by the capacity check).
+  this->SplitHeap.assign(4 * size_t(n) + 64, HeapEntry{});
+  this->MergeHeap.assign(4 * size_t(n) + 64, HeapEntry{});
   this->SplitLog.assign(n, 0);
-  this->Rejected.assign(n, 0u);
   this->Reset();
 }
 
@@ -214,8 +245,17 @@ void ViewDependentRefinement::Reset()
 {
   std::fill(this->Active.begin(), this->Active.end(), 0);
   std::fill(this->ActiveChildren.begin(), this->ActiveChildren.end(), 0);
+  std::fill(this->RequiredBy.begin(), this->RequiredBy.end(), 0);
   std::fill(this->DisplayPos.begin(), this->DisplayPos.end(), None);
   std::fill(this->Active.begin(), this->Active.begin() + this->B, 1);
+  std::fill(this->SplitListPos.begin(), this->SplitListPos.end(), None);
+  std::fill(this->MergeListPos.begin(), this->MergeListPos.end(), None);
+  this->SplitListSize = 0;
+  this->MergeListSize = 0;
+  for (uint32_t w = 0; w < this->B; ++w)
+  {
+    this->RefreshSplitCandidate(w);
+  }
   this->ActiveVertexCount = this->B;
   this->DisplayCount = 0;
   const uint32_t base = this->N > 0 ? this->BlockOffsets[this->B] : 0;
@@ -352,10 +392,32 @@ double ViewDependentRefinement::Priority(uint32_t v) const
   return factor > 0.0 ? projected / factor : std::numeric_limits<double>::infinity();
 }
 
-bool ViewDependentRefinement::Wanted(uint32_t v) const
+
+void ViewDependentRefinement::NextFrame()
 {
-  const double p = this->Priority(v);
-  return p >= 0.0 && (p > this->PixelThreshold || this->PixelThreshold <= 0.0);
+  if (++this->Frame == 0) // stamps wrapped: clear them once every 2^32 updates
+  {
+    std::fill(this->KeyFrame.begin(), this->KeyFrame.end(), 0u);
+    std::fill(this->Queued.begin(), this->Queued.end(), 0u);
+    std::fill(this->Touched.begin(), this->Touched.end(), 0u);
+    this->Frame = 1;
+  }
+}
+
+float ViewDependentRefinement::Key(uint32_t v)
+{
+  if (this->KeyFrame[v] != this->Frame)
+  {
+    this->KeyFrame[v] = this->Frame;
+    this->KeyCache[v] = static_cast<float>(this->Priority(v));
+  }
+  return this->KeyCache[v];
+}
+
+bool ViewDependentRefinement::Wanted(uint32_t v)
+{
+  const float p = this->Key(v);
+  return p >= 0.0f && (p > this->PixelThreshold || this->PixelThreshold <= 0.0);
 }
 
 //------------------------------------------------------------------------------
@@ -372,15 +434,21 @@ uint32_t ViewDependentRefinement::LastActiveChild(uint32_t w) const
     : None;
 }
 
-bool ViewDependentRefinement::AliveAt(uint32_t w, uint32_t v) const
-{
-  // w's active children must be exactly its children collapsed after e_v
-  // (smaller ids): the state w had when e_v happened.
-  const uint32_t next = this->NextChild(w);
-  const uint32_t last = this->LastActiveChild(w);
-  return (next == None || next > v) && (last == None || last < v);
-}
-
+/*
+ * Dependency rule. Vertex v needs, to be displayed: its parent u, its
+ * previous sibling (children split in id order), every vertex n of its row,
+ * and every event below v whose row holds u (no child of a row vertex n above
+ * v, i.e. split before e_v at build time, may be displayed without v). So the front is closed under a static relation
+ * "x needs y" with y < x, and:
+ * - split e_v is legal iff its needs are displayed (the last condition holds
+ *   by closure: such a child would need v), so forced splits never block;
+ * - merge e_v is legal iff no display vertex needs v: no displayed child, v is
+ *   u's last displayed child, no displayed row holds v (RequiredBy), no row
+ *   vertex has a displayed child above v.
+ * The row vertices being displayed and not finer than at e_v makes the birth
+ * corners of e_v's triangles the nearest displayed ancestors of their corners,
+ * so the incremental triangles are the selectively refined mesh of the front.
+ */
 uint32_t ViewDependentRefinement::FirstRequirement(uint32_t v) const
 {
   const uint32_t u = this->Parent[v];
@@ -393,22 +461,32 @@ uint32_t ViewDependentRefinement::FirstRequirement(uint32_t v) const
   {
     return sibling; // an earlier-split sibling (smaller id)
   }
-  for (uint32_t i = this->DependencyOffsets[v]; i < this->DependencyOffsets[size_t(v) + 1]; ++i)
+  // Events whose row holds u, below v (those below v's previous sibling are
+  // displayed already: the sibling needed them).
   {
-    const uint32_t w = this->Dependencies[i];
+    const uint32_t previous = this->LastActiveChild(u);
+    const uint32_t* begin = this->Rev.data() + this->RevOffsets[u];
+    const uint32_t* end = this->Rev.data() + this->RevOffsets[size_t(u) + 1];
+    for (const uint32_t* r = std::upper_bound(begin, end, previous != None ? previous : 0);
+         r != end && *r < v; ++r)
+    {
+      if (!this->Active[*r])
+      {
+        return *r;
+      }
+    }
+  }
+  for (uint32_t i = this->ReqOffsets[v]; i < this->ReqOffsets[size_t(v) + 1]; ++i)
+  {
+    const uint32_t w = this->Req[i];
     if (!this->Active[w])
     {
       return w;
     }
-    const uint32_t next = this->NextChild(w);
-    if (next != None && next < v)
-    {
-      return next; // w too coarse
-    }
     const uint32_t last = this->LastActiveChild(w);
     if (last != None && last > v)
     {
-      return None; // w too fine: only a merge elsewhere can unblock e_v
+      return None; // cannot happen on a closed front; kept as a safe refusal
     }
   }
   return v;
@@ -458,19 +536,39 @@ bool ViewDependentRefinement::ForceSplit(uint32_t v)
 bool ViewDependentRefinement::CanMerge(uint32_t v) const
 {
   if (v < this->B || !this->Active[v] || this->ActiveChildren[v] != 0 ||
-    this->LastActiveChild(this->Parent[v]) != v)
+    this->RequiredBy[v] != 0 || this->LastActiveChild(this->Parent[v]) != v)
   {
     return false;
   }
-  for (uint32_t i = this->DependencyOffsets[v]; i < this->DependencyOffsets[size_t(v) + 1]; ++i)
+  for (uint32_t i = this->ReqOffsets[v]; i < this->ReqOffsets[size_t(v) + 1]; ++i)
   {
-    const uint32_t w = this->Dependencies[i];
-    if (!this->Active[w] || !this->AliveAt(w, v))
+    const uint32_t last = this->LastActiveChild(this->Req[i]);
+    if (last != None && last > v)
     {
       return false;
     }
   }
   return true;
+}
+
+template <typename F>
+void ViewDependentRefinement::ForEachReleased(uint32_t v, uint32_t u, F f) const
+{
+  // u's new last child (or u), the vertices v's row held, and the events
+  // whose row holds u that v (a child of u above them) needed.
+  const uint32_t last = this->LastActiveChild(u);
+  f(last != None ? last : u);
+  for (uint32_t i = this->ReqOffsets[v]; i < this->ReqOffsets[size_t(v) + 1]; ++i)
+  {
+    f(this->Req[i]);
+  }
+  const uint32_t* begin = this->Rev.data() + this->RevOffsets[u];
+  const uint32_t* end = this->Rev.data() + this->RevOffsets[size_t(u) + 1];
+  const uint32_t low = last != None ? last : 0;
+  for (const uint32_t* r = std::upper_bound(begin, end, low); r != end && *r < v; ++r)
+  {
+    f(*r);
+  }
 }
 
 //------------------------------------------------------------------------------
@@ -496,13 +594,52 @@ void ViewDependentRefinement::RemoveDisplay(uint32_t t)
   this->DisplayPos[t] = None;
 }
 
+namespace
+{
+/// Keeps x in a compact list with positions exactly when `member`.
+inline void SetMember(uint32_t* list, uint32_t* pos, uint32_t& size, uint32_t x, bool member)
+{
+  const uint32_t p = pos[x];
+  if (member && p == None)
+  {
+    pos[x] = size;
+    list[size++] = x;
+  }
+  else if (!member && p != None)
+  {
+    const uint32_t moved = list[--size];
+    list[p] = moved;
+    pos[moved] = p;
+    pos[x] = None;
+  }
+}
+}
+
+void ViewDependentRefinement::RefreshSplitCandidate(uint32_t w)
+{
+  SetMember(this->SplitList.data(), this->SplitListPos.data(), this->SplitListSize, w,
+    this->Active[w] && this->NextChild(w) != None);
+}
+
+void ViewDependentRefinement::RefreshMergeCandidate(uint32_t x)
+{
+  SetMember(this->MergeList.data(), this->MergeListPos.data(), this->MergeListSize, x,
+    x >= this->B && this->Active[x] && this->ActiveChildren[x] == 0 &&
+      this->LastActiveChild(this->Parent[x]) == x);
+}
+
 void ViewDependentRefinement::Split(uint32_t v)
 {
   const uint32_t u = this->Parent[v];
+  const uint32_t previous = this->LastActiveChild(u);
   this->Active[v] = 1;
   ++this->ActiveChildren[u];
   ++this->ActiveVertexCount;
   ++this->Statistics.Splits;
+  for (uint32_t i = this->ReqOffsets[v]; i < this->ReqOffsets[size_t(v) + 1]; ++i)
+  {
+    ++this->RequiredBy[this->Req[i]];
+  }
   for (uint32_t t = this->BlockOffsets[v]; t < this->BlockOffsets[size_t(v) + 1]; ++t)
   {
     this->AddDisplay(t);
@@ -516,6 +653,14 @@ void ViewDependentRefinement::Split(uint32_t v)
       this->Display[3 * size_t(p) + s % 3] = v;
     }
   }
+  this->RefreshSplitCandidate(u);
+  this->RefreshSplitCandidate(v);
+  this->RefreshMergeCandidate(v);
+  this->RefreshMergeCandidate(u);
+  if (previous != None)
+  {
+    this->RefreshMergeCandidate(previous);
+  }
   if (this->Mode == UpdateMode::Fixed)
   {
     // New split candidates: v's next sibling and v's first child.
@@ -524,10 +669,10 @@ void ViewDependentRefinement::Split(uint32_t v)
   }
   else if (this->Mode == UpdateMode::Budget)
   {
+    this->Touched[v] = this->Frame;
     this->SplitLog[this->SplitLogSize++] = v;
     this->OfferSplit(this->NextChild(u));
     this->OfferSplit(this->NextChild(v));
-    this->OfferMerge(v);
   }
 }
 
@@ -538,6 +683,10 @@ void ViewDependentRefinement::Merge(uint32_t v)
   --this->ActiveChildren[u];
   --this->ActiveVertexCount;
   ++this->Statistics.Merges;
+  for (uint32_t i = this->ReqOffsets[v]; i < this->ReqOffsets[size_t(v) + 1]; ++i)
+  {
+    --this->RequiredBy[this->Req[i]];
+  }
   for (uint32_t t = this->BlockOffsets[v]; t < this->BlockOffsets[size_t(v) + 1]; ++t)
   {
     this->RemoveDisplay(t);
@@ -551,40 +700,75 @@ void ViewDependentRefinement::Merge(uint32_t v)
       this->Display[3 * size_t(p) + s % 3] = u;
     }
   }
+  this->RefreshSplitCandidate(u);
+  this->RefreshSplitCandidate(v);
+  this->RefreshMergeCandidate(v);
+  this->RefreshMergeCandidate(u);
+  const uint32_t last = this->LastActiveChild(u);
+  if (last != None)
+  {
+    this->RefreshMergeCandidate(last);
+  }
   if (this->Mode == UpdateMode::Budget)
   {
+    this->Touched[v] = this->Frame;
     this->OfferSplit(v);
-    const uint32_t last = this->LastActiveChild(u);
-    this->OfferMerge(last != None ? last : u);
-    for (uint32_t i = this->DependencyOffsets[v]; i < this->DependencyOffsets[size_t(v) + 1]; ++i)
-    {
-      const uint32_t w = this->Dependencies[i];
-      const uint32_t wl = this->LastActiveChild(w);
-      this->OfferMerge(wl != None ? wl : w);
-    }
+    this->ForEachReleased(v, u, [this](uint32_t x) { this->OfferMerge(x); });
   }
 }
 
 //------------------------------------------------------------------------------
+void ViewDependentRefinement::MergeUnwanted()
+{
+  // Finest first: whatever needs a vertex is finer (larger id), so it has
+  // been merged or kept before the vertex is looked at, and one pass reaches
+  // the fixed point. A merge only releases coarser vertices (pushed here).
+  uint32_t* queue = this->MergeQueue.data();
+  this->MergeQueueSize = 0;
+  for (uint32_t i = 0; i < this->MergeListSize; ++i)
+  {
+    const uint32_t x = this->MergeList[i];
+    if (!this->Wanted(x))
+    {
+      this->Queued[x] = this->Frame;
+      queue[this->MergeQueueSize++] = x;
+    }
+  }
+  std::make_heap(queue, queue + this->MergeQueueSize);
+  auto push = [this, queue](uint32_t x) {
+    if (x >= this->B && this->Active[x] && this->Queued[x] != this->Frame)
+    {
+      this->Queued[x] = this->Frame;
+      queue[this->MergeQueueSize++] = x;
+      std::push_heap(queue, queue + this->MergeQueueSize);
+    }
+  };
+  while (this->MergeQueueSize > 0)
+  {
+    std::pop_heap(queue, queue + this->MergeQueueSize);
+    const uint32_t x = queue[--this->MergeQueueSize];
+    if (!this->CanMerge(x) || this->Wanted(x))
+    {
+      continue;
+    }
+    this->Merge(x);
+    this->ForEachReleased(x, this->Parent[x], push);
+  }
+}
+
 const RefinementStatistics& ViewDependentRefinement::UpdateFixedAccuracy()
 {
   const auto start = std::chrono::steady_clock::now();
   this->Statistics = RefinementStatistics{};
   this->PrepareView();
-  this->Mode = UpdateMode::Fixed;
+  this->NextFrame();
   // Splits: every wanted candidate (next child of a display vertex), with
   // the splits it needs; each split offers its new candidates.
+  this->Mode = UpdateMode::Fixed;
   this->WorkSize = 0;
-  for (uint32_t w = 0; w < this->N; ++w)
+  for (uint32_t i = 0; i < this->SplitListSize; ++i)
   {
-    if (this->Active[w])
-    {
-      const uint32_t c = this->NextChild(w);
-      if (c != None)
-      {
-        this->Work[this->WorkSize++] = c;
-      }
-    }
+    this->Work[this->WorkSize++] = this->NextChild(this->SplitList[i]);
   }
   while (this->WorkSize > 0)
   {
@@ -597,24 +781,7 @@ const RefinementStatistics& ViewDependentRefinement::UpdateFixedAccuracy()
     this->ForceSplit(c);
   }
   this->Mode = UpdateMode::None;
-  // Merges, finest first: the finest unwanted vertex that nothing displayed
-  // needs is always mergeable, so one sweep reaches the fixed point; repeat
-  // while a sweep merges anything, in case a merge unblocks a finer one.
-  for (int sweep = 0; sweep < 64; ++sweep)
-  {
-    const uint32_t before = this->Statistics.Merges;
-    for (uint32_t v = this->N; v-- > this->B;)
-    {
-      if (this->Active[v] && this->ActiveChildren[v] == 0 && this->CanMerge(v) && !this->Wanted(v))
-      {
-        this->Merge(v);
-      }
-    }
-    if (this->Statistics.Merges == before)
-    {
-      break;
-    }
-  }
+  this->MergeUnwanted();
   this->Statistics.DisplayVertices = this->ActiveVertexCount;
   this->Statistics.DisplayTriangles = this->DisplayCount;
   this->Statistics.Seconds =
@@ -623,181 +790,164 @@ const RefinementStatistics& ViewDependentRefinement::UpdateFixedAccuracy()
 }
 
 //------------------------------------------------------------------------------
-// Indexed binary heaps over vertex ids: the split heap keeps the largest key
-// on top, the merge heap the smallest.
 namespace
 {
-template <typename Before>
-void SiftUp(uint32_t* heap, uint32_t* pos, const double* key, uint32_t i, Before before)
+// Split heap: largest key on top; merge heap: smallest key on top (std heaps
+// put the largest by the comparator on top).
+struct SplitOrder
 {
-  const uint32_t v = heap[i];
-  while (i > 0)
+  template <typename E>
+  bool operator()(const E& a, const E& b) const
   {
-    const uint32_t parent = (i - 1) / 2;
-    if (!before(key[v], key[heap[parent]]))
-    {
-      break;
-    }
-    heap[i] = heap[parent];
-    pos[heap[i]] = i;
-    i = parent;
+    return a.Key < b.Key || (a.Key == b.Key && a.Id > b.Id);
   }
-  heap[i] = v;
-  pos[v] = i;
-}
-
-template <typename Before>
-void SiftDown(uint32_t* heap, uint32_t* pos, const double* key, uint32_t size, uint32_t i, Before before)
+};
+struct MergeOrder
 {
-  const uint32_t v = heap[i];
-  for (;;)
+  template <typename E>
+  bool operator()(const E& a, const E& b) const
   {
-    uint32_t child = 2 * i + 1;
-    if (child >= size)
-    {
-      break;
-    }
-    if (child + 1 < size && before(key[heap[child + 1]], key[heap[child]]))
-    {
-      ++child;
-    }
-    if (!before(key[heap[child]], key[v]))
-    {
-      break;
-    }
-    heap[i] = heap[child];
-    pos[heap[i]] = i;
-    i = child;
+    return a.Key > b.Key || (a.Key == b.Key && a.Id < b.Id);
   }
-  heap[i] = v;
-  pos[v] = i;
-}
-
-template <typename Before>
-uint32_t Pop(uint32_t* heap, uint32_t* pos, const double* key, uint32_t& size, Before before)
-{
-  const uint32_t top = heap[0];
-  pos[top] = std::numeric_limits<uint32_t>::max();
-  if (--size > 0)
-  {
-    heap[0] = heap[size];
-    pos[heap[0]] = 0;
-    SiftDown(heap, pos, key, size, 0, before);
-  }
-  return top;
-}
-
-inline bool Greater(double a, double b)
-{
-  return a > b;
-}
-inline bool Less(double a, double b)
-{
-  return a < b;
-}
+};
 }
 
 void ViewDependentRefinement::OfferSplit(uint32_t c)
 {
-  if (c == None || this->Active[c] || this->SplitPos[c] != None || this->Rejected[c] == this->Frame)
+  // Sub-threshold detail is never bought, even when the budget allows it.
+  if (c == None || this->Active[c] || this->Touched[c] == this->Frame ||
+    this->SplitSize == this->SplitHeap.size() || !this->Wanted(c))
   {
     return;
   }
-  this->Key[c] = this->Priority(c);
-  this->SplitHeap[this->SplitSize] = c;
-  SiftUp(this->SplitHeap.data(), this->SplitPos.data(), this->Key.data(), this->SplitSize++, Greater);
+  this->SplitHeap[this->SplitSize++] = HeapEntry{ this->Key(c), c };
+  std::push_heap(this->SplitHeap.data(), this->SplitHeap.data() + this->SplitSize, SplitOrder());
 }
 
 void ViewDependentRefinement::OfferMerge(uint32_t v)
 {
-  if (v == None || v < this->B || !this->Active[v] || this->MergePos[v] != None ||
-    this->ActiveChildren[v] != 0 || this->LastActiveChild(this->Parent[v]) != v)
+  if (v == None || this->Touched[v] == this->Frame || this->MergeSize == this->MergeHeap.size() ||
+    !this->CanMerge(v))
   {
     return;
   }
-  this->Key[v] = this->Priority(v);
-  this->MergeHeap[this->MergeSize] = v;
-  SiftUp(this->MergeHeap.data(), this->MergePos.data(), this->Key.data(), this->MergeSize++, Less);
+  this->MergeHeap[this->MergeSize++] = HeapEntry{ this->Key(v), v };
+  std::push_heap(this->MergeHeap.data(), this->MergeHeap.data() + this->MergeSize, MergeOrder());
 }
 
+/*
+ * Budget update: first the fixed-accuracy merges (tau is a floor: nothing
+ * below it stays or is split), then dual heaps of candidate events only,
+ * built by heapify: split the largest projected error while it fits, merge
+ * the smallest while over the budget, and trade a smaller merge for a larger
+ * split when full. Every vertex is split or merged at most once per update
+ * (Touched), so the work is bounded by the candidates and the changes.
+ */
 const RefinementStatistics& ViewDependentRefinement::UpdateBudget(uint32_t triangleBudget)
 {
   const auto start = std::chrono::steady_clock::now();
   this->Statistics = RefinementStatistics{};
   this->PrepareView();
-  // Fresh heaps: every key changes with the view.
-  for (uint32_t i = 0; i < this->SplitSize; ++i)
-  {
-    this->SplitPos[this->SplitHeap[i]] = None;
-  }
-  for (uint32_t i = 0; i < this->MergeSize; ++i)
-  {
-    this->MergePos[this->MergeHeap[i]] = None;
-  }
+  this->NextFrame();
+  this->Mode = UpdateMode::None;
+  this->MergeUnwanted();
+
+  HeapEntry* split = this->SplitHeap.data();
+  HeapEntry* merge = this->MergeHeap.data();
   this->SplitSize = 0;
-  this->MergeSize = 0;
-  if (++this->Frame == 0) // stamps wrapped: clear them once every 2^32 frames
+  for (uint32_t i = 0; i < this->SplitListSize; ++i)
   {
-    std::fill(this->Rejected.begin(), this->Rejected.end(), 0u);
-    this->Frame = 1;
-  }
-  this->Mode = UpdateMode::Budget;
-  for (uint32_t w = 0; w < this->N; ++w)
-  {
-    if (this->Active[w])
+    const uint32_t c = this->NextChild(this->SplitList[i]);
+    if (this->Wanted(c))
     {
-      this->OfferSplit(this->NextChild(w));
-      this->OfferMerge(w);
+      split[this->SplitSize++] = HeapEntry{ this->Key(c), c };
     }
   }
-  auto splitCandidate = [this](uint32_t c) {
-    return !this->Active[c] && this->Active[this->Parent[c]] &&
-      this->NextChild(this->Parent[c]) == c;
+  std::make_heap(split, split + this->SplitSize, SplitOrder());
+  this->MergeSize = 0;
+  for (uint32_t i = 0; i < this->MergeListSize; ++i)
+  {
+    const uint32_t x = this->MergeList[i];
+    if (this->CanMerge(x))
+    {
+      merge[this->MergeSize++] = HeapEntry{ this->Key(x), x };
+    }
+  }
+  std::make_heap(merge, merge + this->MergeSize, MergeOrder());
+
+  this->Mode = UpdateMode::Budget;
+  // Pops the smallest mergeable entry; None when there is none.
+  auto popMerge = [&]() -> uint32_t {
+    while (this->MergeSize > 0)
+    {
+      std::pop_heap(merge, merge + this->MergeSize, MergeOrder());
+      const uint32_t m = merge[--this->MergeSize].Id;
+      if (this->Touched[m] != this->Frame && this->CanMerge(m))
+      {
+        return m;
+      }
+    }
+    return None;
   };
-  // Bounded: the trade loop below cannot cycle forever on ties.
-  const uint64_t limit = 8 * uint64_t(this->N) + 1024;
-  for (uint64_t iteration = 0; iteration < limit; ++iteration)
+  auto topMerge = [&]() -> const HeapEntry* {
+    while (this->MergeSize > 0)
+    {
+      const uint32_t m = merge[0].Id;
+      if (this->Touched[m] != this->Frame && this->CanMerge(m))
+      {
+        return merge;
+      }
+      std::pop_heap(merge, merge + this->MergeSize, MergeOrder());
+      --this->MergeSize;
+    }
+    return nullptr;
+  };
+  for (;;)
   {
     if (this->DisplayCount > triangleBudget)
     {
-      if (this->MergeSize == 0)
+      const uint32_t m = popMerge();
+      if (m == None)
       {
         break;
       }
-      const uint32_t m = Pop(this->MergeHeap.data(), this->MergePos.data(), this->Key.data(),
-        this->MergeSize, Less);
-      if (this->CanMerge(m))
-      {
-        this->Merge(m);
-      }
+      this->Merge(m);
       continue;
     }
     if (this->SplitSize == 0)
     {
       break;
     }
-    const uint32_t s = this->SplitHeap[0];
-    if (!splitCandidate(s))
+    const HeapEntry top = split[0];
+    const uint32_t s = top.Id;
+    if (this->Active[s] || this->Touched[s] == this->Frame || !this->Active[this->Parent[s]] ||
+      this->NextChild(this->Parent[s]) != s)
     {
-      Pop(this->SplitHeap.data(), this->SplitPos.data(), this->Key.data(), this->SplitSize, Greater);
+      std::pop_heap(split, split + this->SplitSize, SplitOrder());
+      --this->SplitSize;
       continue;
     }
     const uint32_t cost = this->BlockOffsets[size_t(s) + 1] - this->BlockOffsets[s];
     if (this->DisplayCount + cost <= triangleBudget)
     {
-      Pop(this->SplitHeap.data(), this->SplitPos.data(), this->Key.data(), this->SplitSize, Greater);
+      std::pop_heap(split, split + this->SplitSize, SplitOrder());
+      --this->SplitSize;
       this->SplitLogSize = 0;
       this->ForceSplit(s);
       if (this->DisplayCount > triangleBudget)
       {
         // The forced splits overshoot: replay them backwards (always legal,
-        // it restores the previous front) and leave s out for this frame.
-        this->Rejected[s] = this->Frame;
+        // it restores the previous front) and leave s out for this update.
+        this->Mode = UpdateMode::None;
         const uint32_t forced = this->SplitLogSize;
         while (this->SplitLogSize > 0)
         {
-          this->Merge(this->SplitLog[--this->SplitLogSize]);
+          const uint32_t x = this->SplitLog[--this->SplitLogSize];
+          this->Merge(x);
+          this->Touched[x] = 0; // may still be split for another candidate
         }
+        this->Mode = UpdateMode::Budget;
+        this->Touched[s] = this->Frame;
         this->Statistics.Splits -= forced;
         this->Statistics.Merges -= forced;
         this->Statistics.ForcedSplits -= forced > 0 ? forced - 1 : 0;
@@ -805,20 +955,12 @@ const RefinementStatistics& ViewDependentRefinement::UpdateBudget(uint32_t trian
       continue;
     }
     // Full: trade the least useful merge for the most useful split.
-    if (this->MergeSize == 0)
+    const HeapEntry* m = topMerge();
+    if (m == nullptr || !(m->Key < top.Key))
     {
       break;
     }
-    const uint32_t m = this->MergeHeap[0];
-    if (!(this->Key[m] < this->Key[s]))
-    {
-      break;
-    }
-    Pop(this->MergeHeap.data(), this->MergePos.data(), this->Key.data(), this->MergeSize, Less);
-    if (this->CanMerge(m))
-    {
-      this->Merge(m);
-    }
+    this->Merge(popMerge());
   }
   this->Mode = UpdateMode::None;
   this->Statistics.DisplayVertices = this->ActiveVertexCount;

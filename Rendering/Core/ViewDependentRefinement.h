@@ -155,26 +155,43 @@ public:
 
 private:
   struct Node; // per-event view attributes (packed)
+  struct HeapEntry
+  {
+    float Key;
+    uint32_t Id;
+  };
 
   template <typename T>
   void InitializeImpl(const TOMMesh& tom, const MergeTree& tree, const T* points);
   void PrepareView();
+  /// Starts a new update: frame stamps (priority cache, queues) move on.
+  void NextFrame();
   /// Projected error of event v over its local threshold factor; negative when culled.
   double Priority(uint32_t v) const;
-  bool Wanted(uint32_t v) const;
+  /// Priority(v), computed once per update.
+  float Key(uint32_t v);
+  bool Wanted(uint32_t v);
   void Split(uint32_t v);
   void Merge(uint32_t v);
   /// Splits v and, first, every split it needs. Returns false when blocked.
   bool ForceSplit(uint32_t v);
+  /// No display vertex needs v (and v is a leaf, the last child of its parent).
   bool CanMerge(uint32_t v) const;
   /// First inactive vertex whose split v needs, v itself when none; UINT32_MAX when blocked.
   uint32_t FirstRequirement(uint32_t v) const;
   uint32_t NextChild(uint32_t w) const;
   uint32_t LastActiveChild(uint32_t w) const;
-  bool AliveAt(uint32_t w, uint32_t v) const;
   void AddDisplay(uint32_t t);
   void RemoveDisplay(uint32_t t);
-  // Budget mode: (re)insert a split or merge candidate with its current priority.
+  // Candidate lists, kept up to date by Split() and Merge().
+  void RefreshSplitCandidate(uint32_t w);
+  void RefreshMergeCandidate(uint32_t x);
+  /// Calls f on every vertex that the merge of v (child of u) may have made mergeable.
+  template <typename F>
+  void ForEachReleased(uint32_t v, uint32_t u, F f) const;
+  /// Merges every unwanted vertex that nothing displayed needs, finest first.
+  void MergeUnwanted();
+  // Budget mode: push a split or merge candidate with its current priority.
   void OfferSplit(uint32_t c);
   void OfferMerge(uint32_t v);
 
@@ -194,7 +211,11 @@ private:
   std::vector<uint32_t> ChildOffsets, Children; // children sorted by id
   std::vector<uint32_t> ActiveChildren;         // active children = a prefix of the sorted ones
   std::vector<uint8_t> Active;
-  std::vector<uint32_t> DependencyOffsets, Dependencies;
+  // Requirement rows (see the .cxx): vertices that must be displayed, with no
+  // displayed child above v, while v is; and their transpose.
+  std::vector<uint32_t> ReqOffsets, Req;
+  std::vector<uint32_t> RevOffsets, Rev;
+  std::vector<uint32_t> RequiredBy; // displayed vertices whose row holds the vertex
   std::vector<uint32_t> BlockOffsets; // triangles of block v: [BlockOffsets[v], BlockOffsets[v+1])
   std::vector<uint32_t> BirthCorners; // corners of each triangle when it appears
   std::vector<uint32_t> StarOffsets, StarSlots; // slots 3t+k that turn from parent to v at split
@@ -206,17 +227,27 @@ private:
   uint32_t DisplayCount = 0;
   uint32_t ActiveVertexCount = 0;
 
+  // Display vertices with a child left to split, and display vertices that are
+  // leaves and their parent's last displayed child (positions: UINT32_MAX absent).
+  std::vector<uint32_t> SplitList, SplitListPos, MergeList, MergeListPos;
+  uint32_t SplitListSize = 0, MergeListSize = 0;
+
+  std::vector<float> KeyCache;      // Priority() of this frame
+  std::vector<uint32_t> KeyFrame;   // frame stamp of KeyCache
+  std::vector<uint32_t> Queued;     // frame stamp: in the merge queue
+  std::vector<uint32_t> Touched;    // frame stamp: split or merged by this budget update
+  uint32_t Frame = 0;
+
   std::vector<uint32_t> Stack; // forced splits
   std::vector<uint32_t> Work;  // fixed-accuracy split candidates
   uint32_t WorkSize = 0;
-  // Budget heaps: ids, positions (UINT32_MAX: absent), keys.
-  std::vector<uint32_t> SplitHeap, SplitPos, MergeHeap, MergePos;
-  std::vector<double> Key;
+  std::vector<uint32_t> MergeQueue; // max-heap of ids (finest first)
+  uint32_t MergeQueueSize = 0;
+  // Budget heaps (lazy: entries are checked when they reach the top).
+  std::vector<HeapEntry> SplitHeap, MergeHeap;
+  uint32_t SplitSize = 0, MergeSize = 0;
   std::vector<uint32_t> SplitLog; // splits of the current forced split, to undo an overshoot
   uint32_t SplitLogSize = 0;
-  std::vector<uint32_t> Rejected; // frame stamp: split left out of this budget update
-  uint32_t Frame = 0;
-  uint32_t SplitSize = 0, MergeSize = 0;
 
   RefinementView View;
   double PixelThreshold = 1.0;

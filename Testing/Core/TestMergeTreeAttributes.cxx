@@ -92,13 +92,6 @@ std::vector<uint32_t> Requirements(
     {
       out.push_back(n);
     }
-    for (uint32_t c : children[n])
-    {
-      if (c < v)
-      {
-        out.push_back(c);
-      }
-    }
   }
   return out;
 }

@@ -429,23 +429,32 @@ TEST(ViewDependentRefinement, BudgetHitsBudgetAndIsMonotone)
   for (const auto& fp : ClosedFixtures())
   {
     const Fixture& f = *fp;
-    ViewDependentRefinement r;
+    ViewDependentRefinement r, fixed;
     r.Initialize(f.Mesh, f.Tree, f.Points.data());
+    fixed.Initialize(f.Mesh, f.Tree, f.Points.data());
     std::mt19937 rng(23);
     const uint32_t full = f.Mesh.GetNumberOfTriangles();
     for (int i = 0; i < 12; ++i)
     {
       const RefinementView view = RandomView(f, rng);
-      r.SetView(view);
-      Configure(r, i);
+      for (ViewDependentRefinement* x : { &r, &fixed })
+      {
+        x->SetView(view);
+        x->SetPixelThreshold(0.0); // no floor: only culled nodes stay coarse
+        Configure(*x, i);
+      }
+      // What the floor alone gives: the budget caps it.
+      const uint32_t reachable = fixed.UpdateFixedAccuracy().DisplayTriangles;
       uint32_t previous = 0;
       for (double fraction : { 0.05, 0.1, 0.2, 0.4, 0.7 })
       {
         const uint32_t budget = std::max<uint32_t>(f.Mesh.BaseTriangleCount, uint32_t(fraction * full));
         const RefinementStatistics s = r.UpdateBudget(budget);
         CheckFront(f, r, "budget " + std::to_string(budget));
+        EXPECT_EQ(s.BlockedSplits, 0u);
         EXPECT_LE(s.DisplayTriangles, budget) << f.Name;
-        EXPECT_GE(s.DisplayTriangles + std::max<uint32_t>(16, budget / 100), budget) << f.Name;
+        EXPECT_GE(s.DisplayTriangles + std::max<uint32_t>(16, budget / 50), std::min(budget, reachable))
+          << f.Name;
         EXPECT_GE(s.DisplayTriangles, previous);
         previous = s.DisplayTriangles;
       }
@@ -456,6 +465,55 @@ TEST(ViewDependentRefinement, BudgetHitsBudgetAndIsMonotone)
       CheckFront(f, r, "budget down");
     }
   }
+}
+
+// In budget mode tau is a floor: nothing whose projected error is below it is
+// split (or kept), so an ample budget gives exactly the fixed-accuracy front,
+// and a tight one a subset of it.
+TEST(ViewDependentRefinement, BudgetNeverRefinesBelowThreshold)
+{
+  int tight = 0;
+  for (const auto& fp : ClosedFixtures())
+  {
+    const Fixture& f = *fp;
+    ViewDependentRefinement r, fixed;
+    r.Initialize(f.Mesh, f.Tree, f.Points.data());
+    fixed.Initialize(f.Mesh, f.Tree, f.Points.data());
+    std::mt19937 rng(29);
+    for (int i = 0; i < 10; ++i)
+    {
+      const RefinementView view = RandomView(f, rng);
+      for (ViewDependentRefinement* x : { &r, &fixed })
+      {
+        x->SetView(view);
+        x->SetPixelThreshold(1.0 + i % 3);
+        Configure(*x, i);
+      }
+      const RefinementStatistics a = fixed.UpdateFixedAccuracy();
+      // From a finer front (tau 0) down: the floor merges what it does not want.
+      r.SetPixelThreshold(0.0);
+      r.UpdateFixedAccuracy();
+      r.SetPixelThreshold(1.0 + i % 3);
+      const RefinementStatistics b = r.UpdateBudget(f.Mesh.GetNumberOfTriangles());
+      CheckFront(f, r, "ample budget");
+      EXPECT_EQ(b.DisplayTriangles, a.DisplayTriangles) << f.Name << " view " << i;
+      ASSERT_TRUE(Front(r) == Front(fixed)) << f.Name << " view " << i;
+      if (a.DisplayTriangles > f.Mesh.BaseTriangleCount + 64)
+      {
+        const uint32_t budget = (a.DisplayTriangles + f.Mesh.BaseTriangleCount) / 2;
+        const RefinementStatistics c = r.UpdateBudget(budget);
+        CheckFront(f, r, "tight budget");
+        EXPECT_LE(c.DisplayTriangles, budget);
+        const std::vector<uint8_t> capped = Front(r), floor = Front(fixed);
+        for (size_t v = 0; v < capped.size(); ++v)
+        {
+          ASSERT_LE(capped[v], floor[v]) << "vertex " << v << " below the threshold";
+        }
+        ++tight;
+      }
+    }
+  }
+  EXPECT_GT(tight, 5);
 }
 
 TEST(ViewDependentRefinement, BackFacesSimplified)
