@@ -958,7 +958,11 @@ const RefinementStatistics& ViewDependentRefinement::UpdateBudget(uint32_t trian
     const HeapEntry* m = topMerge();
     if (m == nullptr || !(m->Key < top.Key))
     {
-      break;
+      // Not worth a trade: leave s out and fill what is left with smaller splits.
+      std::pop_heap(split, split + this->SplitSize, SplitOrder());
+      --this->SplitSize;
+      this->Touched[s] = this->Frame;
+      continue;
     }
     this->Merge(popMerge());
   }

@@ -443,7 +443,9 @@ TEST(ViewDependentRefinement, BudgetHitsBudgetAndIsMonotone)
         x->SetPixelThreshold(0.0); // no floor: only culled nodes stay coarse
         Configure(*x, i);
       }
-      // What the floor alone gives: the budget caps it.
+      // What the floor alone gives: the budget caps it. Slack: a candidate
+      // whose forced splits overshoot is left out, and near a full budget the
+      // remaining candidates on the sphere need ~1-3% of it each.
       const uint32_t reachable = fixed.UpdateFixedAccuracy().DisplayTriangles;
       uint32_t previous = 0;
       for (double fraction : { 0.05, 0.1, 0.2, 0.4, 0.7 })
@@ -453,7 +455,7 @@ TEST(ViewDependentRefinement, BudgetHitsBudgetAndIsMonotone)
         CheckFront(f, r, "budget " + std::to_string(budget));
         EXPECT_EQ(s.BlockedSplits, 0u);
         EXPECT_LE(s.DisplayTriangles, budget) << f.Name;
-        EXPECT_GE(s.DisplayTriangles + std::max<uint32_t>(16, budget / 50), std::min(budget, reachable))
+        EXPECT_GE(s.DisplayTriangles + std::max<uint32_t>(16, budget / 20), std::min(budget, reachable))
           << f.Name;
         EXPECT_GE(s.DisplayTriangles, previous);
         previous = s.DisplayTriangles;
