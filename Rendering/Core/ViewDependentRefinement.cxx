@@ -196,6 +196,53 @@ void ViewDependentRefinement::InitializeImpl(
     }
   }
 
+  if (this->WingDependencies)
+  {
+    // Wing rows: only the third corners of e_v's own triangles (Hoppe's
+    // neighbourhood of a vertex split), same closure rule as the full rows.
+    std::vector<uint32_t> off(size_t(n) + 1, 0), req;
+    for (uint32_t v = 0; v < n; ++v)
+    {
+      const size_t first = req.size();
+      if (v >= b)
+      {
+        for (uint32_t t = this->BlockOffsets[v]; t < this->BlockOffsets[size_t(v) + 1]; ++t)
+        {
+          for (int k = 0; k < 3; ++k)
+          {
+            const uint32_t c = this->BirthCorners[3 * size_t(t) + k];
+            if (c != v && c != this->Parent[v])
+            {
+              req.push_back(c);
+            }
+          }
+        }
+      }
+      std::sort(req.begin() + first, req.end());
+      req.erase(std::unique(req.begin() + first, req.end()), req.end());
+      off[size_t(v) + 1] = uint32_t(req.size());
+    }
+    this->ReqOffsets = off;
+    this->Req = req;
+    this->RevOffsets.assign(size_t(n) + 1, 0);
+    for (uint32_t x : this->Req)
+    {
+      ++this->RevOffsets[size_t(x) + 1];
+    }
+    for (uint32_t v = 0; v < n; ++v)
+    {
+      this->RevOffsets[size_t(v) + 1] += this->RevOffsets[v];
+    }
+    this->Rev.assign(this->Req.size(), 0);
+    std::vector<uint32_t> fill(this->RevOffsets.begin(), this->RevOffsets.end() - 1);
+    for (uint32_t v = b; v < n; ++v)
+    {
+      for (uint32_t i = this->ReqOffsets[v]; i < this->ReqOffsets[size_t(v) + 1]; ++i)
+      {
+        this->Rev[fill[this->Req[i]]++] = v;
+      }
+    }
+  }
   this->Nodes.assign(n, Node{});
   for (uint32_t v = 0; v < n; ++v)
   {

@@ -424,6 +424,49 @@ TEST(ViewDependentRefinement, FixedAccuracyIncrementalEqualsFromScratch)
   EXPECT_GE(views, 60);
 }
 
+// Wing dependencies: every front invariant, incremental == from scratch, and
+// fewer forced splits than the full rows on the same views.
+TEST(ViewDependentRefinement, WingDependencies)
+{
+  for (const auto& fp : ClosedFixtures())
+  {
+    const Fixture& f = *fp;
+    ViewDependentRefinement incremental, scratch, rows;
+    incremental.SetWingDependencies(true);
+    scratch.SetWingDependencies(true);
+    EXPECT_TRUE(scratch.GetWingDependencies());
+    incremental.Initialize(f.Mesh, f.Tree, f.Points.data());
+    scratch.Initialize(f.Mesh, f.Tree, f.Points.data());
+    rows.Initialize(f.Mesh, f.Tree, f.Points.data());
+    std::mt19937 rng(13);
+    uint64_t forcedWings = 0, forcedRows = 0;
+    for (int i = 0; i < 60; ++i)
+    {
+      const RefinementView view = RandomView(f, rng);
+      for (ViewDependentRefinement* r : { &incremental, &scratch, &rows })
+      {
+        r->SetView(view);
+        r->SetPixelThreshold(0.5 * (1 + i % 6));
+        Configure(*r, i);
+      }
+      const RefinementStatistics s = i % 3 == 2
+        ? incremental.UpdateBudget(f.Mesh.GetNumberOfTriangles() / (2 + i % 4))
+        : incremental.UpdateFixedAccuracy();
+      EXPECT_EQ(s.BlockedSplits, 0u);
+      CheckFront(f, incremental, "wings view " + std::to_string(i));
+      if (i % 3 != 2)
+      {
+        scratch.Reset();
+        forcedWings += scratch.UpdateFixedAccuracy().ForcedSplits;
+        rows.Reset();
+        forcedRows += rows.UpdateFixedAccuracy().ForcedSplits;
+        ASSERT_TRUE(Front(incremental) == Front(scratch)) << f.Name << " view " << i;
+      }
+    }
+    EXPECT_LT(forcedWings, forcedRows) << f.Name;
+  }
+}
+
 TEST(ViewDependentRefinement, BudgetHitsBudgetAndIsMonotone)
 {
   for (const auto& fp : ClosedFixtures())
