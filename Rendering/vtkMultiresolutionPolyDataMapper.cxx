@@ -25,10 +25,12 @@
 #include "vtkLight.h"
 #include "vtkLightCollection.h"
 #include "vtkMath.h"
+#include "vtkMatrix3x3.h"
 #include "vtkMatrix4x4.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLBufferObject.h"
+#include "vtkOpenGLCamera.h"
 #include "vtkOpenGLCellToVTKCellMap.h"
 #include "vtkOpenGLIndexBufferObject.h"
 #include "vtkOpenGLRenderTimer.h"
@@ -988,12 +990,42 @@ void vtkMultiresolutionPolyDataMapper::RefineObjects(vtkRenderer* ren, vtkActor*
   ren->GetTiledSize(&width, &height);
   view.ViewportHeight = std::max(height, 1);
   view.ViewAngle = camera->GetViewAngle();
+  if (camera->GetUseHorizontalViewAngle() && width > 0 && height > 0)
+  {
+    // The projected error needs the vertical angle; a horizontal one spans the width.
+    const double half = 0.5 * vtkMath::RadiansFromDegrees(view.ViewAngle);
+    view.ViewAngle = 2.0 *
+      vtkMath::DegreesFromRadians(std::atan(std::tan(half) * static_cast<double>(height) / width));
+  }
   // World lengths to object lengths: the actor's uniform scale (cube root of
   // the determinant for the rare non-uniform case).
   const double scale = std::cbrt(std::abs(act->GetMatrix()->Determinant()));
   view.ParallelScale = camera->GetParallelScale() / (scale > 0.0 ? scale : 1.0);
+  // Frustum planes from the world-to-clip matrix the draw uses (cached by the
+  // camera until it changes; vtkCamera::GetFrustumPlanes() would rebuild a
+  // transform concatenation, allocating, at every call). vtkOpenGLCamera
+  // keeps it transposed: row r of the clip matrix is column r of wcdc.
   double planes[24];
-  camera->GetFrustumPlanes(ren->GetTiledAspectRatio(), planes);
+  if (auto* glCamera = vtkOpenGLCamera::SafeDownCast(camera))
+  {
+    vtkMatrix4x4 *wcvc = nullptr, *vcdc = nullptr, *wcdc = nullptr;
+    vtkMatrix3x3* normals = nullptr;
+    glCamera->GetKeyMatrices(ren, wcvc, normals, vcdc, wcdc);
+    // Left, right, bottom, top, near, far: w +- x, w +- y, w +- z >= 0 inside.
+    for (int i = 0; i < 6; ++i)
+    {
+      const int axis = i / 2;
+      const double sign = i % 2 == 0 ? 1.0 : -1.0;
+      for (int c = 0; c < 4; ++c)
+      {
+        planes[4 * i + c] = wcdc->GetElement(c, 3) + sign * wcdc->GetElement(c, axis);
+      }
+    }
+  }
+  else
+  {
+    camera->GetFrustumPlanes(ren->GetTiledAspectRatio(), planes);
+  }
   const double* model = act->GetMatrix()->GetData();
   view.NumberOfFrustumPlanes = 6;
   for (int i = 0; i < 6; ++i)

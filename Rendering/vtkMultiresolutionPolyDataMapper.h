@@ -154,8 +154,11 @@ public:
 
   ///@{
   /**
-   * Screen-space error threshold tau, pixels (FIXED_ACCURACY mode), >= 0;
-   * default 1. Near silhouettes and highlights it is multiplied by their factors.
+   * Screen-space error threshold tau, pixels, finite and >= 0; default 1.
+   * FIXED_ACCURACY: fronts are refined until no projected error exceeds it.
+   * BUDGET: a floor, detail below it is not bought even when the budget
+   * allows (0 spends the whole budget). Near silhouettes and highlights it is
+   * multiplied by their factors.
    */
   void SetPixelThreshold(double tau);
   vtkGetMacro(PixelThreshold, double);
