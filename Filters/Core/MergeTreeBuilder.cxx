@@ -5,6 +5,7 @@
 #include "MergeTreeAttributes.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <limits>
 #include <utility>
@@ -38,6 +39,13 @@
  * level (few collapses left besides constrained vertices) releases boundary
  * and feature constraints early, which shortens the tree by a fifth; the
  * geometric checks are only relaxed once nothing is legal.
+ *
+ * The cost cap (MergeTreeBuildOptions::LevelCostRatio) ends a level early,
+ * once the next candidate costs too much more than where the greedy order
+ * would be after as many collapses. The untried rest of the list (and the
+ * re-queued alternatives) are still exact for their untouched vertices, so
+ * they simply join the next level's list. A capped level is thin by choice,
+ * not because constraints hold vertices up: it does not release them.
  */
 
 namespace timecritical
@@ -63,6 +71,15 @@ inline uint32_t OrderedBits(float key)
   uint32_t bits;
   std::memcpy(&bits, &key, sizeof(bits));
   return bits & 0x80000000u ? ~bits : bits | 0x80000000u;
+}
+
+/// The inverse of OrderedBits.
+inline float KeyFromBits(uint32_t ordered)
+{
+  const uint32_t bits = ordered & 0x80000000u ? ordered & 0x7fffffffu : ~ordered;
+  float key;
+  std::memcpy(&key, &bits, sizeof(key));
+  return key;
 }
 
 constexpr uint32_t NoKey = std::numeric_limits<uint32_t>::max();
@@ -121,8 +138,11 @@ bool LaterEntry(const Entry& a, const Entry& b)
 class LevelSchedule
 {
 public:
-  explicit LevelSchedule(CollapseEngine& engine)
+  LevelSchedule(CollapseEngine& engine, const MergeTreeBuildOptions& options)
     : Engine(engine)
+    , CostRatio(options.LevelCostRatio)
+    , MinimumShare(options.LevelMinimumShare)
+    , UncappedShare(options.UncappedShare)
   {
   }
 
@@ -133,8 +153,9 @@ public:
   uint16_t GetLevelCount() const { return this->LevelCount; }
 
 private:
-  bool RunLevel(uint16_t level, uint32_t& applied);
-  uint32_t Alternative(uint32_t u, uint32_t failedTarget);
+  bool RunLevel(uint16_t level, uint32_t& applied, bool& capped);
+  uint32_t CapFor(uint32_t applied) const;
+  uint32_t Alternative(uint32_t u, uint32_t failedTarget, uint32_t cap, uint32_t& key);
   void Apply(uint32_t u, uint32_t w, uint16_t level);
   void Touch(uint32_t x);
   Entry EntryOf(uint32_t x) const;
@@ -148,11 +169,16 @@ private:
   }
 
   CollapseEngine& Engine;
+  const double CostRatio;      // MergeTreeBuildOptions::LevelCostRatio
+  const double MinimumShare;   // MergeTreeBuildOptions::LevelMinimumShare
+  const double UncappedShare;  // MergeTreeBuildOptions::UncappedShare
+  uint32_t MaxTakenKey = 0;    // costliest collapse taken so far (ordered bits)
   std::vector<Entry> Current;  // this level's candidates, by key
   size_t Position = 0;         // next one in Current
   std::vector<Entry> Requeued; // min-heap: legal alternatives costlier than their turn
   std::vector<Entry> Next;     // fresh entries of the touched vertices
-  std::vector<Entry> Deferred; // untouched vertices whose target is touched
+  std::vector<Entry> Deferred; // untouched vertices whose target is touched, and
+                               // those a capped level left untried
   std::vector<Entry> Buffer;   // radix sort
   std::vector<uint8_t> Touched; // == Stamp: touched in this level (then the engine's tag
                                 // of the vertex is its entry in Next)
@@ -231,11 +257,12 @@ void LevelSchedule::CollectNext()
 }
 
 //------------------------------------------------------------------------------
-uint32_t LevelSchedule::Alternative(uint32_t u, uint32_t failedTarget)
+uint32_t LevelSchedule::Alternative(uint32_t u, uint32_t failedTarget, uint32_t cap, uint32_t& key)
 {
-  // u's cheapest target is illegal: its cheapest legal one. Returns it when it
-  // is still the least error of the level; otherwise re-queues u, or defers
-  // it when that target is touched, or blocks u when nothing is legal.
+  // u's cheapest target is illegal: its cheapest legal one. Returns it (and
+  // its key) when it is still the least error of the level and within the
+  // level's cap; otherwise re-queues u, or defers it when that target is
+  // touched, or blocks u when nothing is legal.
   CollapseEngine& e = this->Engine;
   const std::vector<Candidate>& candidates = e.GatherCandidates(u);
   for (size_t i = 0; i < candidates.size(); ++i)
@@ -246,8 +273,8 @@ uint32_t LevelSchedule::Alternative(uint32_t u, uint32_t failedTarget)
       continue;
     }
     e.SetTarget(u, c.Target);
-    const uint32_t key = OrderedBits(CollapseEngine::KeyOf(c.Cost));
-    if (!this->IsTouched(c.Target) && key <= this->NextKey())
+    key = OrderedBits(CollapseEngine::KeyOf(c.Cost));
+    if (!this->IsTouched(c.Target) && key <= this->NextKey() && key <= cap)
     {
       return c.Target;
     }
@@ -300,7 +327,20 @@ void LevelSchedule::Apply(uint32_t u, uint32_t w, uint16_t level)
 }
 
 //------------------------------------------------------------------------------
-bool LevelSchedule::RunLevel(uint16_t level, uint32_t& applied)
+uint32_t LevelSchedule::CapFor(uint32_t applied) const
+{
+  // The greedy order, from the state at the start of the level, would have
+  // reached about the key of the candidate at rank `applied` after as many
+  // collapses: the level may go CostRatio times above it, or up to the
+  // costliest collapse already taken (which costs no error).
+  const size_t rank = std::min<size_t>(applied, this->Current.size() - 1);
+  const double frontier = static_cast<double>(KeyFromBits(this->Current[rank].Key));
+  const uint32_t cap = OrderedBits(CollapseEngine::KeyOf(this->CostRatio * frontier));
+  return std::max(cap, this->MaxTakenKey);
+}
+
+//------------------------------------------------------------------------------
+bool LevelSchedule::RunLevel(uint16_t level, uint32_t& applied, bool& capped)
 {
   CollapseEngine& e = this->Engine;
   if (++this->Stamp == 0)
@@ -312,9 +352,29 @@ bool LevelSchedule::RunLevel(uint16_t level, uint32_t& applied)
   this->Deferred.clear();
   this->Position = 0;
   applied = 0;
+  capped = false;
   const uint32_t n = e.GetNumberOfVertices();
+  const uint32_t live = n - e.GetRemovedCount();
+  const bool useCap = this->CostRatio > 0.0 && !this->Current.empty() &&
+    static_cast<double>(live) > this->UncappedShare * static_cast<double>(n);
+  // The cap waits for the level's minimum share (at least one collapse, so
+  // that a capped level is never empty).
+  const uint32_t minimum =
+    std::max<uint32_t>(1, static_cast<uint32_t>(std::ceil(this->MinimumShare * live)));
+  uint32_t cap = useCap ? this->CapFor(0) : NoKey;
   for (;;)
   {
+    if (applied >= minimum && this->NextKey() > cap && this->NextKey() != NoKey)
+    {
+      // The rest waits for the next level, unchanged (untouched vertices keep
+      // their keys; touched ones have fresh entries in Next).
+      capped = true;
+      this->Deferred.insert(
+        this->Deferred.end(), this->Current.begin() + this->Position, this->Current.end());
+      this->Deferred.insert(this->Deferred.end(), this->Requeued.begin(), this->Requeued.end());
+      this->Requeued.clear();
+      return true;
+    }
     Entry entry;
     if (!this->Requeued.empty() &&
       (this->Position == this->Current.size() ||
@@ -343,9 +403,10 @@ bool LevelSchedule::RunLevel(uint16_t level, uint32_t& applied)
       continue;
     }
     uint32_t w = entry.Target;
+    uint32_t key = entry.Key;
     if (!e.CheckCollapse(u, w))
     {
-      w = this->Alternative(u, w);
+      w = this->Alternative(u, w, applied >= minimum ? cap : NoKey, key);
       if (w == Invalid)
       {
         continue;
@@ -353,6 +414,11 @@ bool LevelSchedule::RunLevel(uint16_t level, uint32_t& applied)
     }
     this->Apply(u, w, level);
     ++applied;
+    if (useCap)
+    {
+      this->MaxTakenKey = std::max(this->MaxTakenKey, key);
+      cap = this->CapFor(applied);
+    }
     if (e.GetRemovedCount() >= this->NextReport)
     {
       this->NextReport += this->ReportEvery;
@@ -386,7 +452,8 @@ bool LevelSchedule::Run()
   {
     const uint32_t live = n - e.GetRemovedCount();
     uint32_t applied = 0;
-    if (!this->RunLevel(level, applied))
+    bool capped = false;
+    if (!this->RunLevel(level, applied, capped))
     {
       return false;
     }
@@ -405,7 +472,7 @@ bool LevelSchedule::Run()
     {
       ++level;
     }
-    if (applied < live / ThinLevelDivisor && e.GetRelaxation() < collapse::LevelNoConstraints)
+    if (!capped && applied < live / ThinLevelDivisor && e.GetRelaxation() < collapse::LevelNoConstraints)
     {
       // A thin level: the constrained vertices (boundaries, feature curves)
       // hold up the last few free ones, which would trickle down one level
@@ -435,7 +502,7 @@ MergeTreeBuildResult MergeTreeBuilder::Build(const double* points, size_t number
 {
   MergeTreeBuildResult result;
   CollapseEngine engine(this->Options.Collapse, false);
-  LevelSchedule schedule(engine);
+  LevelSchedule schedule(engine, this->Options);
   result.TOM = engine.Run(
     points, numberOfPoints, triangles, numberOfTriangles, [&schedule] { return schedule.Run(); });
   if (result.TOM.Aborted)

@@ -16,6 +16,39 @@ struct MergeTreeBuildOptions
 {
   /// Quadrics, boundary and feature handling, normal-flip and sliver checks, progress.
   TOMBuildOptions Collapse;
+
+  /**
+   * The cost cap of a level, which makes the collapse sequence follow the
+   * greedy order (TOMBuilder) so that every prefix of the merge tree's TOM is
+   * nearly as accurate as the greedy TOM at the same size. A maximal level
+   * (the paper's) ends with collapses far costlier than the cheap ones it
+   * started with, and the error of a prefix is the largest so far: 10-30x the
+   * greedy TOM's at half the triangles on smooth scanned meshes. Instead a
+   * level takes its candidates least error first only while the next one
+   * costs at most LevelCostRatio times the greedy frontier, the key of the
+   * level's candidate at the rank of the collapses taken so far (about where
+   * the greedy order would be after as many), or no more than the costliest
+   * collapse taken so far (that one set the error already). The rest waits
+   * for the next level. Keys are mean squared distances: a ratio of 2 allows
+   * about 1.4x the distance.
+   *
+   * The price is depth. Measured (TOMBenchmark section 5), the defaults keep
+   * the error at 50/25/10/5% of the triangles within about 1.3x of the greedy
+   * TOM's (against up to 30x, and 650x on CAD-like flat meshes, uncapped) with
+   * 1.1-1.6x the levels of maximal levels (about 1.2-1.6x the paper's Table 1
+   * for the mesh size). Larger ratios give fewer levels and more error.
+   * 0 turns the cap off: maximal levels.
+   */
+  double LevelCostRatio = 2.0;
+  /// A capped level still takes at least this share of its live vertices
+  /// (greedily, least error first): where keys rise steeply with rank (flat
+  /// regions ordered by the tiny tie-breaking term) the cap alone would make
+  /// many thin levels for no error.
+  double LevelMinimumShare = 0.03;
+  /// The cap is lifted once at most this share of the input vertices is left:
+  /// the coarsest meshes are bound by dependencies rather than by cost, and
+  /// capped levels of one or two collapses would only deepen the tree.
+  double UncappedShare = 0.01;
 };
 
 /// What MergeTreeBuilder produces: a valid TOM (points and triangles ordered by

@@ -2,10 +2,12 @@
 // Tests of MergeTreeBuilder: the result is a valid TOM, levels follow the
 // collapse sequence, the collapses of a level have disjoint regions of
 // influence (checked by replaying the TOM independently of the builder), the
-// tree is balanced, bad input throws, progress and abort work.
+// tree is balanced, the cost cap keeps the TOM's error near the greedy TOM's,
+// bad input throws, progress and abort work.
 #include "MergeTreeBuilder.h"
 #include "TOMBuilder.h"
 #include "TOMMesh.h"
+#include "TOMTraversal.h"
 #include "TOMValidator.h"
 
 #include "TestMeshIO.h"
@@ -162,13 +164,37 @@ void ExpectValidMergeTree(const TriangleMesh& mesh, const MergeTreeBuildResult& 
 /// Bounds of a balanced tree over n vertices down to a few: a level removes at
 /// most half of the vertices (a child per parent, parents stay), so at least
 /// log2 levels; Table 1 of the paper reaches ~4.5 log2(n) levels at most with
-/// its dependencies, and a greedy sequential order would need n.
+/// its maximal levels, the cost cap adds up to about half as many again (at
+/// most 2x is the budget), and a greedy sequential order would need n.
 void ExpectBalanced(const MergeTreeBuildResult& r, double maxFactor)
 {
   const double n = r.TOM.Mesh.GetNumberOfVertices();
   const double base = std::max<double>(r.TOM.Mesh.BaseVertexCount, 1.0);
   EXPECT_GE(r.Tree.LevelCount, std::floor(std::log2(n / base)));
   EXPECT_LE(r.Tree.LevelCount, maxFactor * std::log2(n)) << n << " vertices";
+}
+
+/// The error a TOM reports (world units) at a fraction r of its triangles.
+double ErrorAt(const TOMBuildResult& tom, double r)
+{
+  const TOMTraversal traversal(tom.Mesh);
+  const uint32_t n = traversal.GetVertexCountForTriangles(traversal.GetTrianglesForResolution(r));
+  return tom.VertexCountError[n];
+}
+
+const double Resolutions[] = { 0.5, 0.25, 0.1, 0.05 };
+
+/// The merge tree's TOM at each resolution against the greedy TOM of the same mesh.
+void ExpectErrorNearGreedy(const TriangleMesh& mesh, const MergeTreeBuildResult& r, double bound)
+{
+  const TOMBuildResult greedy = TOMBuilder().Build(
+    mesh.Points.data(), mesh.NumberOfPoints(), mesh.Triangles.data(), mesh.NumberOfTriangles());
+  for (double resolution : Resolutions)
+  {
+    const double g = ErrorAt(greedy, resolution);
+    ASSERT_GT(g, 0.0) << resolution;
+    EXPECT_LE(ErrorAt(r.TOM, resolution), bound * g) << "at resolution " << resolution;
+  }
 }
 }
 
@@ -179,7 +205,7 @@ TEST(MergeTreeBuilder, SphereIsValidIndependentAndBalanced)
   const MergeTreeBuildResult r = Build(mesh);
   ExpectValidMergeTree(mesh, r);
   EXPECT_LE(r.TOM.Mesh.BaseVertexCount, 8u);
-  ExpectBalanced(r, 5.0);
+  ExpectBalanced(r, 5.5);
   // Levels shrink the mesh by a steady factor at first: the first level alone
   // removes a sizeable share of the vertices.
   const Replay replay = ReplayLevels(r);
@@ -227,6 +253,54 @@ TEST(MergeTreeBuilder, SameMeshAndCoarsestRuleAsTOMBuilder)
     ASSERT_LE(r.TOM.VertexCountError[i], r.TOM.VertexCountError[i - 1]) << i;
   }
   EXPECT_EQ(r.TOM.VertexCountError.back(), 0.f);
+}
+
+TEST(MergeTreeBuilder, CostCapKeepsTheErrorNearTheGreedyTOMs)
+{
+  // A UV sphere: smooth, with curvature of the triangulation varying from
+  // the poles to the equator, so that maximal levels end with collapses far
+  // costlier than the greedy order's at the same size.
+  const TriangleMesh mesh = timecritical::testing::MakeUVSphere(60, 120);
+  const MergeTreeBuildResult capped = Build(mesh);
+  ExpectValidMergeTree(mesh, capped);
+  ExpectBalanced(capped, 5.5);
+  ExpectErrorNearGreedy(mesh, capped, 1.5);
+
+  // Without the cap (the paper's maximal levels): shallower, and at a quarter
+  // of the triangles clearly worse. Both the cap's point and this test's teeth.
+  MergeTreeBuildOptions maximal;
+  maximal.LevelCostRatio = 0.0;
+  const MergeTreeBuildResult uncapped = Build(mesh, maximal);
+  ExpectValidMergeTree(mesh, uncapped);
+  ExpectBalanced(uncapped, 4.0);
+  EXPECT_LT(uncapped.Tree.LevelCount, capped.Tree.LevelCount);
+  EXPECT_LE(capped.Tree.LevelCount, 1.6 * uncapped.Tree.LevelCount);
+  EXPECT_GT(ErrorAt(uncapped.TOM, 0.25), 1.5 * ErrorAt(capped.TOM, 0.25));
+}
+
+TEST(MergeTreeBuilder, CostCapSettings)
+{
+  const TriangleMesh mesh = timecritical::testing::MakeTorus(60, 30, 4, 0.02);
+  // A stricter cap tracks the greedy order more closely at the price of
+  // levels; every setting keeps the levels independent and the TOM valid.
+  unsigned previous = 0;
+  for (double ratio : { 8.0, 2.0, 1.2 })
+  {
+    MergeTreeBuildOptions options;
+    options.LevelCostRatio = ratio;
+    options.UncappedShare = 0.0; // capped down to the coarsest mesh
+    const MergeTreeBuildResult r = Build(mesh, options);
+    ExpectValidMergeTree(mesh, r);
+    EXPECT_GE(r.Tree.LevelCount, previous) << ratio;
+    previous = r.Tree.LevelCount;
+  }
+  // A minimum share of 1 takes every collapse a maximal level would.
+  MergeTreeBuildOptions full, maximal;
+  full.LevelMinimumShare = 1.0;
+  maximal.LevelCostRatio = 0.0;
+  const MergeTreeBuildResult a = Build(mesh, full), b = Build(mesh, maximal);
+  EXPECT_EQ(a.TOM.Mesh.Substitution, b.TOM.Mesh.Substitution);
+  EXPECT_EQ(a.Tree.Level, b.Tree.Level);
 }
 
 TEST(MergeTreeBuilder, SliverRejectionKeepsItValid)
@@ -319,7 +393,24 @@ TEST(MergeTreeBuilderSharedData, Cow)
   const MergeTreeBuildResult r = Build(mesh);
   ExpectValidMergeTree(mesh, r);
   EXPECT_LE(r.TOM.Mesh.BaseVertexCount, 16u);
-  ExpectBalanced(r, 6.0);
+  ExpectBalanced(r, 7.0);
   std::cout << "cow: " << mesh.NumberOfTriangles() << " triangles, " << r.Tree.LevelCount
             << " levels\n";
+}
+
+TEST(MergeTreeBuilderSharedData, BunnyErrorNearGreedy)
+{
+  const timecritical::testing::SharedMesh bunny =
+    timecritical::testing::FindSharedMesh("stanford-bunny.obj");
+  if (!bunny.Available)
+  {
+    GTEST_SKIP() << "shared mesh not available: " << bunny.Path;
+  }
+  const TriangleMesh mesh = timecritical::testing::LoadMesh(bunny.Path);
+  const MergeTreeBuildResult r = Build(mesh);
+  ExpectValidMergeTree(mesh, r);
+  // Table 1 of the paper: 65 levels for the bunny; the cap may cost up to 2x.
+  EXPECT_LE(r.Tree.LevelCount, 130u);
+  ExpectErrorNearGreedy(mesh, r, 1.5); // maximal levels: 15x at 50%
+  std::cout << "bunny: " << r.Tree.LevelCount << " levels\n";
 }
