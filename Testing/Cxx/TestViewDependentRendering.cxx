@@ -1557,3 +1557,35 @@ TEST(ViewDependentRenderer, BadSettingsAreErrorsAndIgnored)
   EXPECT_EQ(renderer->GetSilhouetteFactor(), 1.0);
   EXPECT_EQ(errors.Count, expected);
 }
+
+TEST(ViewDependentRenderer, StatisticsOfAnActorCulledAsAWhole)
+{
+  // Looking away from every object: VTK's culler removes the actor before the
+  // renderer gathers objects, so the frame has none, and its statistics must
+  // say that nothing was drawn or refined (not repeat the previous frame's).
+  RendererScene scene(MixedObjects());
+  vtkTimeCriticalRenderer* renderer = scene.Renderer;
+  renderer->SetTargetFrameTime(10.0);
+  scene.Window->Render();
+  ASSERT_GT(renderer->GetObjectTrianglesDrawn(), 0);
+  ASSERT_GT(renderer->GetObjectSplits(0), 0);
+  vtkCamera* camera = renderer->GetActiveCamera();
+  camera->SetFocalPoint(0.5, 0.6, 20.0);
+  scene.Window->Render();
+  EXPECT_EQ(renderer->GetNumberOfObjects(), 0);
+  EXPECT_EQ(renderer->GetObjectTrianglesDrawn(), 0);
+  EXPECT_EQ(renderer->GetTrianglesDrawn(), 0);
+  EXPECT_EQ(renderer->GetRefinementTime(), 0.0);
+  EXPECT_EQ(renderer->GetObjectTriangles(0), -1);
+  EXPECT_EQ(renderer->GetObjectVertices(0), -1);
+  EXPECT_EQ(renderer->GetObjectSplits(0), -1);
+  EXPECT_FALSE(renderer->GetObjectIsViewDependent(0));
+  // Back in view: the front was kept, and this view is its previous one.
+  camera->SetFocalPoint(0, 0.5, 0);
+  scene.Window->Render();
+  EXPECT_EQ(renderer->GetNumberOfObjects(), 4);
+  EXPECT_TRUE(renderer->GetObjectIsViewDependent(0));
+  EXPECT_GT(renderer->GetObjectTriangles(0), 0);
+  EXPECT_GT(renderer->GetObjectVertices(0), 0);
+  EXPECT_GT(renderer->GetRefinementTime(), 0.0);
+}
