@@ -692,6 +692,47 @@ unsigned int vtkMultiresolutionPolyDataMapper::GetObjectFlatIndex(vtkIdType i) c
   return this->IsValidObject(i) ? this->Internal->Objects[i].FlatIndex : 0u;
 }
 
+namespace
+{
+/// Sets a refinement setting as render state: the fronts and the index buffer
+/// follow it (version bump), the vertex buffers and shaders do not.
+template <typename T>
+void SetRenderState(T& member, T value, unsigned long& version)
+{
+  if (member != value)
+  {
+    member = value;
+    ++version;
+  }
+}
+}
+
+void vtkMultiresolutionPolyDataMapper::SetViewDependentRefinement(bool on)
+{
+  SetRenderState(this->ViewDependentRefinement, on, this->Internal->ResolutionVersion);
+}
+
+void vtkMultiresolutionPolyDataMapper::SetRefinementMode(int mode)
+{
+  SetRenderState(this->RefinementMode, std::min(std::max(mode, static_cast<int>(BUDGET)),
+    static_cast<int>(FIXED_ACCURACY)), this->Internal->ResolutionVersion);
+}
+
+void vtkMultiresolutionPolyDataMapper::SetBackFaceSimplification(bool on)
+{
+  SetRenderState(this->BackFaceSimplification, on, this->Internal->ResolutionVersion);
+}
+
+void vtkMultiresolutionPolyDataMapper::SetSilhouetteRefinement(bool on)
+{
+  SetRenderState(this->SilhouetteRefinement, on, this->Internal->ResolutionVersion);
+}
+
+void vtkMultiresolutionPolyDataMapper::SetHighlightRefinement(bool on)
+{
+  SetRenderState(this->HighlightRefinement, on, this->Internal->ResolutionVersion);
+}
+
 void vtkMultiresolutionPolyDataMapper::SetPixelThreshold(double tau)
 {
   if (!(tau >= 0.0) || std::isinf(tau))

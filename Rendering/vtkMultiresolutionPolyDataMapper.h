@@ -142,11 +142,13 @@ public:
   /**
    * View-dependent refinement of leaves that carry a merge tree (default on).
    * Off: they are drawn as plain TOMs (uniform prefix at their resolution).
+   * These settings, like the resolutions, are render state: they change the
+   * index buffer only and do not modify the mapper.
    */
-  vtkSetMacro(ViewDependentRefinement, bool);
+  void SetViewDependentRefinement(bool on);
   vtkGetMacro(ViewDependentRefinement, bool);
   vtkBooleanMacro(ViewDependentRefinement, bool);
-  vtkSetClampMacro(RefinementMode, int, BUDGET, FIXED_ACCURACY);
+  void SetRefinementMode(int mode); ///< clamped to [BUDGET, FIXED_ACCURACY]
   vtkGetMacro(RefinementMode, int);
   void SetRefinementModeToBudget() { this->SetRefinementMode(BUDGET); }
   void SetRefinementModeToFixedAccuracy() { this->SetRefinementMode(FIXED_ACCURACY); }
@@ -166,14 +168,14 @@ public:
 
   ///@{
   /// Regions whose normal cone faces away from the viewer are not refined (default on).
-  vtkSetMacro(BackFaceSimplification, bool);
+  void SetBackFaceSimplification(bool on);
   vtkGetMacro(BackFaceSimplification, bool);
   vtkBooleanMacro(BackFaceSimplification, bool);
   ///@}
 
   ///@{
   /// Finer threshold (tau times the factor, in (0, 1]) near silhouettes (default on, 0.25).
-  vtkSetMacro(SilhouetteRefinement, bool);
+  void SetSilhouetteRefinement(bool on);
   vtkGetMacro(SilhouetteRefinement, bool);
   vtkBooleanMacro(SilhouetteRefinement, bool);
   void SetSilhouetteFactor(double factor);
@@ -182,7 +184,7 @@ public:
 
   ///@{
   /// Finer threshold near specular highlights of the first light (default on, 0.5).
-  vtkSetMacro(HighlightRefinement, bool);
+  void SetHighlightRefinement(bool on);
   vtkGetMacro(HighlightRefinement, bool);
   vtkBooleanMacro(HighlightRefinement, bool);
   void SetHighlightFactor(double factor);

@@ -776,8 +776,11 @@ TEST(ViewDependentMapper, CameraMovesRewriteOnlyTheIndexBuffer)
     SCOPED_TRACE(mode == vtkMultiresolutionPolyDataMapper::BUDGET ? "budget" : "fixed accuracy");
     if (mode != mapper->GetRefinementMode())
     {
+      // Render state: the index buffer follows, nothing else.
+      const vtkIdType indexBuilds = mapper->GetIndexBufferBuildCount();
       mapper->SetRefinementMode(mode);
-      scene.Render(); // the mode is a mapper setting (Modified): one full rebuild
+      scene.Render();
+      EXPECT_EQ(mapper->GetIndexBufferBuildCount(), indexBuilds + 1);
     }
     const vtkIdType modeVertexBuilds = mapper->GetVertexBufferBuildCount();
     int changedFrames = 0;
@@ -836,11 +839,28 @@ TEST(ViewDependentMapper, CameraMovesRewriteOnlyTheIndexBuffer)
     }
     EXPECT_GE(changedFrames, 4) << "the camera path should move the fronts";
   }
-  // Camera moves are render state: the mapper is not modified by them.
-  EXPECT_EQ(mapper->GetVertexBufferBuildCount(), vertexBuilds + 1);
+  // Camera moves and refinement settings are render state: the mapper is not
+  // modified by them, the vertex buffers stay, the index buffer follows.
+  EXPECT_EQ(mapper->GetVertexBufferBuildCount(), vertexBuilds);
   const vtkMTimeType settled = mapper->GetMTime();
   scene.LookAt(1, 1, 4);
   scene.Render();
+  using Setter = void (vtkMultiresolutionPolyDataMapper::*)(bool);
+  for (Setter set : { &vtkMultiresolutionPolyDataMapper::SetViewDependentRefinement,
+         &vtkMultiresolutionPolyDataMapper::SetBackFaceSimplification,
+         &vtkMultiresolutionPolyDataMapper::SetSilhouetteRefinement,
+         &vtkMultiresolutionPolyDataMapper::SetHighlightRefinement })
+  {
+    for (bool on : { false, true })
+    {
+      const vtkIdType indexBuilds = mapper->GetIndexBufferBuildCount();
+      (mapper->*set)(on);
+      scene.Render();
+      EXPECT_EQ(mapper->GetIndexBufferBuildCount(), indexBuilds + 1);
+    }
+  }
+  EXPECT_EQ(mapper->GetVertexBufferBuildCount(), vertexBuilds);
+  EXPECT_EQ(mapper->GetVertexBufferUploadTime("vertexMC"), positions);
   EXPECT_EQ(mapper->GetMTime(), settled);
   EXPECT_EQ(warnings.Count, 1);
 }
