@@ -149,9 +149,78 @@ float RoundUp(double x)
   }
   return f;
 }
+
+/// Replay state of one vertex, one cache line: everything an event reads of
+/// its neighbours (position, the error and depth of their last merged child,
+/// the requirements pushed onto them) and of its own pair (corner list, node
+/// error and radius), so that a touched vertex costs one miss.
+struct alignas(64) Node
+{
+  double X, Y, Z;
+  double Error;         ///< node error (unrounded) of the subtree merged so far
+  double Radius;        ///< node radius of the subtree merged so far
+  uint32_t FanStart;    ///< its fan: corners (3t + k) of its triangles, in Fans
+  uint32_t FanCount;
+  uint32_t Mark;        ///< last event that listed it in its row
+  float ChildError;     ///< final error of the last child merged into it (0: none)
+  float PushError;      ///< largest error of an event that needs this vertex's event
+  /// Depth + 1 of that child (0: none) and largest depth + 1 of such an event,
+  /// saturated at 65535: the stored level is clamped to 65534 anyway.
+  uint16_t ChildDepth;
+  uint16_t PushDepth;
+};
+static_assert(sizeof(Node) == 64, "one cache line per vertex");
+
+/// One triangle of the replay: current corner ids and whether it has died.
+struct alignas(16) Tri
+{
+  uint32_t Cur[3];
+  uint32_t Dead;
+};
+static_assert(sizeof(Tri) == 16, "four triangles per cache line");
+
+inline void Prefetch(const void* p)
+{
+#if defined(__GNUC__) || defined(__clang__)
+  __builtin_prefetch(p, 1, 3);
+#else
+  (void)p;
+#endif
+}
+
+constexpr uint32_t Succ[3] = { 1, 2, 0 };
+constexpr uint32_t Pred[3] = { 2, 0, 1 };
+
+/// Sorts a row of distinct ids (rows hold ~10 ids: insertion sort).
+void SortRow(uint32_t* first, uint32_t* last)
+{
+  if (last - first > 48)
+  {
+    std::sort(first, last);
+  }
+  else
+  {
+    for (uint32_t* i = first + 1; i < last; ++i)
+    {
+      const uint32_t x = *i;
+      uint32_t* j = i;
+      for (; j > first && *(j - 1) > x; --j)
+      {
+        *j = *(j - 1);
+      }
+      *j = x;
+    }
+  }
+}
 }
 
 //------------------------------------------------------------------------------
+// One pass over the collapse sequence, finest event first. Costs are cache
+// misses on vertices and triangles scattered by the TOM order, so the state
+// lives in one line per vertex (Node) and half a line per triangle (Tri), the
+// next events' lines are prefetched, and the monotone pass ("must be split
+// first", ViewDependentRefinement's rule) runs in the same loop: every event it
+// depends on is earlier in the replay, so its final error and depth are known.
 MergeTree ComputeMergeTree(const TOMMesh& tom, const double* points, const uint16_t* levels)
 {
   const std::string problem = TOMValidator::Check(tom);
@@ -175,9 +244,6 @@ MergeTree ComputeMergeTree(const TOMMesh& tom, const double* points, const uint1
     }
   }
   const uint32_t* S = tom.Substitution.data();
-  auto P = [points](uint32_t v) -> Vec {
-    return { points[3 * size_t(v)], points[3 * size_t(v) + 1], points[3 * size_t(v) + 2] };
-  };
 
   MergeTree tree;
   tree.Level.assign(N, 0);
@@ -187,166 +253,301 @@ MergeTree ComputeMergeTree(const TOMMesh& tom, const double* points, const uint1
   tree.ConeCosine.assign(N, -1.0f);
   tree.DependencyOffsets.assign(size_t(N) + 1, 0);
 
+  std::vector<Node> node(N);
+  for (uint32_t v = 0; v < N; ++v)
+  {
+    Node& n = node[v];
+    n.X = points[3 * size_t(v)];
+    n.Y = points[3 * size_t(v) + 1];
+    n.Z = points[3 * size_t(v) + 2];
+    n.Error = 0.0;
+    n.Radius = 0.0;
+    n.FanStart = 0;
+    n.FanCount = 0;
+    n.Mark = None;
+    n.ChildError = 0.0f;
+    n.ChildDepth = 0;
+    n.PushError = 0.0f;
+    n.PushDepth = 0;
+  }
+  auto P = [&node](uint32_t v) -> Vec { return { node[v].X, node[v].Y, node[v].Z }; };
+
   // Leaf cones: every original face normal around the vertex (conservative,
   // unlike the vertex normal alone); axis = area-weighted mean.
-  std::vector<Cone> cone(N, Cone{ { 0.0, 0.0, 1.0 }, 0.0 });
-  std::vector<Vec> faceNormal(T);
+  std::vector<Cone> cone(N, Cone{ { 0.0, 0.0, 0.0 }, 1.0 }); // sum of normals, min cosine
+  // Fans live in one arena: an event writes the new fan of u (its living
+  // corners, then v's survivors) at the end, as contiguous corners whose
+  // triangles load in parallel (a linked list would chain the misses).
+  std::vector<uint32_t> fans;
+  size_t fanEnd = 3 * size_t(T);
   {
-    std::vector<Vec> sum(N, Vec{ 0.0, 0.0, 0.0 });
+    std::vector<Vec> faceNormal(T);
+    constexpr uint32_t Ahead = 16; // triangles whose vertices are prefetched
     for (uint32_t t = 0; t < T; ++t)
     {
       const uint32_t* tri = tom.Triangles.data() + 3 * size_t(t);
+      if (t + Ahead < T)
+      {
+        for (int k = 0; k < 3; ++k)
+        {
+          Prefetch(&node[tri[3 * Ahead + k]]);
+          Prefetch(&cone[tri[3 * Ahead + k]]);
+        }
+      }
       const Vec n = Cross(Sub(P(tri[1]), P(tri[0])), Sub(P(tri[2]), P(tri[0])));
       const double len = Norm(n);
       faceNormal[t] = len > 0.0 ? Vec{ n.X / len, n.Y / len, n.Z / len } : Vec{ 0.0, 0.0, 0.0 };
       for (int k = 0; k < 3; ++k)
       {
-        Vec& s = sum[tri[k]];
+        Vec& s = cone[tri[k]].Axis;
         s = { s.X + n.X, s.Y + n.Y, s.Z + n.Z };
+        ++node[tri[k]].FanCount;
       }
     }
-    std::vector<double> minCos(N, 1.0);
+    uint32_t fanStart = 0;
     for (uint32_t v = 0; v < N; ++v)
     {
-      const double len = Norm(sum[v]);
+      node[v].FanStart = fanStart;
+      fanStart += node[v].FanCount;
+      node[v].FanCount = 0;
+      const Vec sum = cone[v].Axis;
+      const double len = Norm(sum);
       if (len > 0.0)
       {
-        cone[v].Axis = { sum[v].X / len, sum[v].Y / len, sum[v].Z / len };
+        cone[v].Axis = { sum.X / len, sum.Y / len, sum.Z / len };
       }
       else
       {
-        minCos[v] = -1.0; // no usable face: any direction
+        cone[v].Axis = { 0.0, 0.0, 1.0 };
+        cone[v].Angle = -1.0; // no usable face: any direction
       }
     }
+    // Fans of the full-resolution mesh, and the smallest cosine to the axis.
+    fans.resize(3 * size_t(T) + 16 * size_t(N - B) + 64);
     for (uint32_t t = 0; t < T; ++t)
     {
-      if (faceNormal[t].X == 0.0 && faceNormal[t].Y == 0.0 && faceNormal[t].Z == 0.0)
+      const uint32_t* tri = tom.Triangles.data() + 3 * size_t(t);
+      if (t + Ahead < T)
+      {
+        for (int k = 0; k < 3; ++k)
+        {
+          Prefetch(&node[tri[3 * Ahead + k]]);
+          Prefetch(&cone[tri[3 * Ahead + k]]);
+        }
+      }
+      if (t + Ahead / 2 < T)
+      {
+        for (int k = 0; k < 3; ++k)
+        {
+          const Node& n = node[tri[3 * (Ahead / 2) + k]];
+          Prefetch(&fans[n.FanStart + n.FanCount]);
+        }
+      }
+      for (uint32_t k = 0; k < 3; ++k)
+      {
+        Node& n = node[tri[k]];
+        fans[n.FanStart + n.FanCount++] = 3 * t + k;
+      }
+      const Vec& fn = faceNormal[t];
+      if (fn.X == 0.0 && fn.Y == 0.0 && fn.Z == 0.0)
       {
         continue; // zero-area face: no normal to bound
       }
-      const uint32_t* tri = tom.Triangles.data() + 3 * size_t(t);
       for (int k = 0; k < 3; ++k)
       {
-        minCos[tri[k]] = std::min(minCos[tri[k]], Dot(cone[tri[k]].Axis, faceNormal[t]));
+        Cone& c = cone[tri[k]];
+        c.Angle = std::min(c.Angle, Dot(c.Axis, fn));
       }
     }
     for (uint32_t v = 0; v < N; ++v)
     {
+      const double minCos = cone[v].Angle;
       cone[v].Angle =
-        minCos[v] <= -1.0 ? Pi : std::acos(std::max(-1.0, std::min(1.0, minCos[v]))) + ConeSlack;
+        minCos <= -1.0 ? Pi : std::acos(std::max(-1.0, std::min(1.0, minCos))) + ConeSlack;
     }
   }
 
-  // Replay: per-vertex singly linked lists of the corners (slots 3t+k) of the
-  // living triangles, and the current corner ids.
-  std::vector<uint32_t> cur(tom.Triangles);
-  std::vector<uint32_t> next(3 * size_t(T), None);
-  std::vector<uint32_t> head(N, None);
-  for (uint32_t s = 3 * T; s-- > 0;)
+  // Replay state: current corner ids of every triangle.
+  std::vector<Tri> tri(T);
+  for (uint32_t t = 0; t < T; ++t)
   {
-    next[s] = head[cur[s]];
-    head[cur[s]] = s;
+    Tri& r = tri[t];
+    for (int k = 0; k < 3; ++k)
+    {
+      r.Cur[k] = tom.Triangles[3 * size_t(t) + k];
+    }
+    r.Dead = 0;
   }
-  std::vector<uint8_t> dead(T, 0);
-  std::vector<uint32_t> mark(N, None);
-  std::vector<double> nodeError(N, 0.0), nodeRadius(N, 0.0);
-  std::vector<uint32_t> rowStart(N, 0), rowLength(N, 0);
+
+  // Rows in replay order (v descending), moved to vertex order at the end.
+  std::vector<uint32_t> rowStart(N, 0);
   std::vector<uint32_t> rows;
-  rows.reserve(8 * size_t(N - B) + 16);
+  rows.reserve(12 * size_t(N - B) + 64);
 
   for (uint32_t v = N; v-- > B;)
   {
-    const uint32_t u = S[v];
-    const Vec pv = P(v), pu = P(u);
-    mark[u] = v;
-    mark[v] = v;
-    rowStart[v] = static_cast<uint32_t>(rows.size());
-    double local2 = std::numeric_limits<double>::infinity();
-    auto addNeighbor = [&](uint32_t w) {
-      if (mark[w] != v)
+    // Prefetch, one stage per event ahead: the pair's vertices, their fans,
+    // the fans' triangles, the triangles' vertices.
+    if (v >= B + 4)
+    {
+      const uint32_t w = v - 4;
+      Prefetch(&node[w]);
+      Prefetch(&node[S[w]]);
+      Prefetch(&cone[w]);
+      Prefetch(&cone[S[w]]);
+    }
+    if (v >= B + 3)
+    {
+      Prefetch(&fans[node[v - 3].FanStart]);
+      Prefetch(&fans[node[S[v - 3]].FanStart]);
+    }
+    if (v >= B + 2)
+    {
+      for (const Node* n : { &node[v - 2], &node[S[v - 2]] })
       {
-        mark[w] = v;
+        const uint32_t* f = fans.data() + n->FanStart;
+        for (uint32_t i = 0; i < n->FanCount; ++i)
+        {
+          Prefetch(&tri[f[i] / 3]);
+        }
+      }
+    }
+    if (v >= B + 1)
+    {
+      for (const Node* n : { &node[v - 1], &node[S[v - 1]] })
+      {
+        const uint32_t* f = fans.data() + n->FanStart;
+        for (uint32_t i = 0; i < n->FanCount; ++i)
+        {
+          const Tri& r = tri[f[i] / 3];
+          const uint32_t k = f[i] % 3;
+          Prefetch(&node[r.Cur[Succ[k]]]);
+          Prefetch(&node[r.Cur[Pred[k]]]);
+        }
+      }
+    }
+    const uint32_t u = S[v];
+    Node& nv = node[v];
+    Node& nu = node[u];
+    const Vec pv = { nv.X, nv.Y, nv.Z }, pu = { nu.X, nu.Y, nu.Z };
+    const size_t rowBegin = rows.size();
+    double local2 = std::numeric_limits<double>::infinity();
+    nu.Mark = v;
+    nv.Mark = v;
+    auto addNeighbor = [&](uint32_t w) {
+      if (node[w].Mark != v)
+      {
+        node[w].Mark = v;
         rows.push_back(w);
       }
     };
-    // v's corners: neighbours, the triangles dying with e_v (they hold u),
-    // and the survivors, relabelled to u and moved to u's list.
-    uint32_t moved = None, movedTail = None;
-    for (uint32_t s = head[v]; s != None;)
+    if (fanEnd + nv.FanCount + nu.FanCount > fans.size())
     {
-      const uint32_t following = next[s];
-      const uint32_t t = s / 3, k = s % 3;
-      if (!dead[t])
-      {
-        const uint32_t a = cur[3 * t + (k + 1) % 3], b = cur[3 * t + (k + 2) % 3];
-        addNeighbor(a);
-        addNeighbor(b);
-        if (a == u || b == u)
-        {
-          dead[t] = 1;
-        }
-        else
-        {
-          local2 = std::min(local2, PointTriangleDistance2(pv, pu, P(a), P(b)));
-          cur[s] = u;
-          next[s] = moved;
-          moved = s;
-          if (movedTail == None)
-          {
-            movedTail = s;
-          }
-        }
-      }
-      s = following;
+      fans.resize(2 * (fanEnd + nv.FanCount + nu.FanCount));
     }
-    // u's corners: neighbours, the rest of the new fan around u; drop the dead.
-    uint32_t* link = &head[u];
-    while (*link != None)
+    uint32_t* out = fans.data() + fanEnd;
+    // v's corners: neighbours, the triangles dying with e_v (they hold u),
+    // and the survivors, relabelled to u and moved to u's new fan.
+    const uint32_t* fv = fans.data() + nv.FanStart;
+    for (uint32_t i = 0; i < nv.FanCount; ++i)
     {
-      const uint32_t s = *link;
-      const uint32_t t = s / 3, k = s % 3;
-      if (dead[t])
+      const uint32_t s = fv[i];
+      Tri& r = tri[s / 3];
+      if (r.Dead)
       {
-        *link = next[s];
         continue;
       }
-      const uint32_t a = cur[3 * t + (k + 1) % 3], b = cur[3 * t + (k + 2) % 3];
+      const uint32_t k = s % 3;
+      const uint32_t a = r.Cur[Succ[k]], b = r.Cur[Pred[k]];
+      addNeighbor(a);
+      addNeighbor(b);
+      if (a == u || b == u)
+      {
+        r.Dead = 1;
+      }
+      else
+      {
+        local2 = std::min(local2, PointTriangleDistance2(pv, pu, P(a), P(b)));
+        r.Cur[k] = u;
+        *out++ = s;
+      }
+    }
+    // u's corners: neighbours, the rest of the new fan around u; drop the dead.
+    const uint32_t* fu = fans.data() + nu.FanStart;
+    for (uint32_t i = 0; i < nu.FanCount; ++i)
+    {
+      const uint32_t s = fu[i];
+      const Tri& r = tri[s / 3];
+      if (r.Dead)
+      {
+        continue;
+      }
+      const uint32_t k = s % 3;
+      const uint32_t a = r.Cur[Succ[k]], b = r.Cur[Pred[k]];
       addNeighbor(a);
       addNeighbor(b);
       local2 = std::min(local2, PointTriangleDistance2(pv, pu, P(a), P(b)));
-      link = &next[s];
+      *out++ = s;
     }
-    if (moved != None)
-    {
-      next[movedTail] = head[u];
-      head[u] = moved;
-    }
-    head[v] = None;
-    rowLength[v] = static_cast<uint32_t>(rows.size()) - rowStart[v];
-    std::sort(rows.begin() + rowStart[v], rows.end());
+    nu.FanStart = static_cast<uint32_t>(fanEnd);
+    nu.FanCount = static_cast<uint32_t>(out - fans.data() - fanEnd);
+    fanEnd += nu.FanCount;
+    nv.FanCount = 0;
+    SortRow(rows.data() + rowBegin, rows.data() + rows.size());
+    rowStart[v] = static_cast<uint32_t>(rowBegin);
 
     // Geometry of the node u + v. Radius: nested spheres around the parent.
     // Error: the triangle inequality over the local surface change (distance
     // of the only moved vertex to the new fan), capped by the radius, which
     // bounds the displacement of every original point of the node.
     const double edge = Norm(Sub(pv, pu));
-    const double radius = std::max(nodeRadius[u], edge + nodeRadius[v]);
+    const double radius = std::max(nu.Radius, edge + nv.Radius);
     const double local = std::isfinite(local2) ? std::sqrt(local2) : edge;
-    const double error = std::min(std::max(nodeError[u], nodeError[v]) + local, radius);
-    nodeRadius[u] = radius;
-    nodeError[u] = error;
-    cone[u] = MergeCones(cone[u], cone[v]);
-    tree.Error[v] = RoundUp(error);
+    const double nodeError = std::min(std::max(nu.Error, nv.Error) + local, radius);
+    nu.Radius = radius;
+    nu.Error = nodeError;
+    Cone& cu = cone[u];
+    cu = MergeCones(cu, cone[v]);
     tree.Radius[v] = RoundUp(radius);
-    tree.ConeAxis[3 * size_t(v)] = static_cast<float>(cone[u].Axis.X);
-    tree.ConeAxis[3 * size_t(v) + 1] = static_cast<float>(cone[u].Axis.Y);
-    tree.ConeAxis[3 * size_t(v) + 2] = static_cast<float>(cone[u].Axis.Z);
-    tree.ConeCosine[v] = cone[u].Angle >= Pi ? -1.0f : static_cast<float>(std::cos(cone[u].Angle));
+    tree.ConeAxis[3 * size_t(v)] = static_cast<float>(cu.Axis.X);
+    tree.ConeAxis[3 * size_t(v) + 1] = static_cast<float>(cu.Axis.Y);
+    tree.ConeAxis[3 * size_t(v) + 2] = static_cast<float>(cu.Axis.Z);
+    tree.ConeCosine[v] = cu.Angle >= Pi ? -1.0f : static_cast<float>(std::cos(cu.Angle));
+
+    // Monotone error and depth: e_v needs its previous sibling (the last child
+    // merged into u), its own last child, and for each row vertex n the last
+    // child merged into n; events needing e_v pushed onto it before.
+    float error = std::max(RoundUp(nodeError), nv.PushError);
+    uint32_t depth = nv.PushDepth; // saturated: see Node
+    error = std::max(error, std::max(nu.ChildError, nv.ChildError));
+    depth = std::max<uint32_t>(depth, std::max(nu.ChildDepth, nv.ChildDepth));
+    const uint32_t* row = rows.data() + rowBegin;
+    const size_t rowSize = rows.size() - rowBegin;
+    for (size_t i = 0; i < rowSize; ++i)
+    {
+      const Node& n = node[row[i]];
+      error = std::max(error, n.ChildError);
+      depth = std::max<uint32_t>(depth, n.ChildDepth);
+    }
+    for (size_t i = 0; i < rowSize; ++i)
+    {
+      if (row[i] >= B)
+      {
+        Node& n = node[row[i]];
+        n.PushError = std::max(n.PushError, error);
+        n.PushDepth = static_cast<uint16_t>(std::max<uint32_t>(n.PushDepth, std::min(depth + 1, 65535u)));
+      }
+    }
+    nu.ChildError = error;
+    nu.ChildDepth = static_cast<uint16_t>(std::min(depth + 1, 65535u));
+    tree.Error[v] = error;
+    tree.Level[v] = static_cast<uint16_t>(std::min<uint32_t>(depth, 65534u));
   }
+  // Roots bound their whole tree: their own node error and every child's.
   for (uint32_t w = 0; w < B; ++w)
   {
-    tree.Error[w] = RoundUp(nodeError[w]);
-    tree.Radius[w] = RoundUp(nodeRadius[w]);
+    tree.Error[w] = std::max(RoundUp(node[w].Error), node[w].ChildError);
+    tree.Radius[w] = RoundUp(node[w].Radius);
     tree.ConeAxis[3 * size_t(w)] = static_cast<float>(cone[w].Axis.X);
     tree.ConeAxis[3 * size_t(w) + 1] = static_cast<float>(cone[w].Axis.Y);
     tree.ConeAxis[3 * size_t(w) + 2] = static_cast<float>(cone[w].Axis.Z);
@@ -356,96 +557,23 @@ MergeTree ComputeMergeTree(const TOMMesh& tom, const double* points, const uint1
   // Dependency rows in vertex order.
   for (uint32_t v = 0; v < N; ++v)
   {
-    tree.DependencyOffsets[size_t(v) + 1] = tree.DependencyOffsets[v] + rowLength[v];
+    const uint32_t length = v < B ? 0u
+      : static_cast<uint32_t>((v == B ? rows.size() : rowStart[v - 1]) - rowStart[v]);
+    tree.DependencyOffsets[size_t(v) + 1] = tree.DependencyOffsets[v] + length;
   }
   tree.Dependencies.resize(tree.DependencyOffsets[N]);
   for (uint32_t v = B; v < N; ++v)
   {
-    std::copy(rows.begin() + rowStart[v], rows.begin() + rowStart[v] + rowLength[v],
+    std::copy(rows.begin() + rowStart[v],
+      rows.begin() + rowStart[v] + (tree.DependencyOffsets[size_t(v) + 1] - tree.DependencyOffsets[v]),
       tree.Dependencies.begin() + tree.DependencyOffsets[v]);
-  }
-
-  // Children sorted by id, to find the splits each event needs first.
-  std::vector<uint32_t> childOffsets(size_t(N) + 1, 0), children(N - B);
-  for (uint32_t v = B; v < N; ++v)
-  {
-    ++childOffsets[size_t(S[v]) + 1];
-  }
-  for (uint32_t v = 0; v < N; ++v)
-  {
-    childOffsets[size_t(v) + 1] += childOffsets[v];
-  }
-  {
-    std::vector<uint32_t> fill(childOffsets.begin(), childOffsets.end() - 1);
-    for (uint32_t v = B; v < N; ++v)
-    {
-      children[fill[S[v]]++] = v;
-    }
-  }
-  auto firstChildAbove = [&](uint32_t n, uint32_t v) -> size_t {
-    return static_cast<size_t>(std::upper_bound(children.begin() + childOffsets[n],
-                                 children.begin() + childOffsets[size_t(n) + 1], v) -
-      children.begin());
-  };
-
-  // Monotonicity and levels over "must be split first" (ViewDependentRefinement's
-  // rule; requirements point to smaller ids, so one pass from the finest event
-  // suffices): e_v needs its previous sibling (or e_u) and e_n of every
-  // dependency n; the first child of n above v needs e_v.
-  std::vector<uint32_t> depth(N, 0);
-  const bool deriveLevels = levels == nullptr;
-  for (uint32_t v = N; v-- > B;)
-  {
-    float error = tree.Error[v];
-    uint32_t level = depth[v];
-    const uint32_t* row = tree.Dependencies.data() + tree.DependencyOffsets[v];
-    const uint32_t rowSize = tree.DependencyOffsets[size_t(v) + 1] - tree.DependencyOffsets[v];
-    for (uint32_t i = 0; i < rowSize; ++i)
-    {
-      const size_t above = firstChildAbove(row[i], v);
-      if (above < childOffsets[size_t(row[i]) + 1])
-      {
-        error = std::max(error, tree.Error[children[above]]);
-        level = std::max(level, depth[children[above]] + 1);
-      }
-    }
-    tree.Error[v] = error;
-    depth[v] = level;
-    auto push = [&](uint32_t w) {
-      tree.Error[w] = std::max(tree.Error[w], error);
-      depth[w] = std::max(depth[w], level + 1);
-    };
-    const uint32_t u = S[v];
-    const size_t self = firstChildAbove(u, v) - 1; // v's own slot
-    if (self > childOffsets[u])
-    {
-      push(children[self - 1]);
-    }
-    else if (u >= B)
-    {
-      push(u);
-    }
-    for (uint32_t i = 0; i < rowSize; ++i)
-    {
-      if (row[i] >= B)
-      {
-        push(row[i]);
-      }
-    }
-  }
-  for (uint32_t v = B; v < N; ++v)
-  {
-    if (S[v] < B) // roots bound their whole tree
-    {
-      tree.Error[S[v]] = std::max(tree.Error[S[v]], tree.Error[v]);
-    }
   }
 
   // Levels: given, or the depth above (0 = finest) saturated to 16 bits.
   uint32_t levelCount = 0;
   for (uint32_t v = B; v < N; ++v)
   {
-    const uint32_t level = deriveLevels ? std::min<uint32_t>(depth[v], 65534u) : levels[v];
+    const uint32_t level = levels == nullptr ? tree.Level[v] : levels[v];
     tree.Level[v] = static_cast<uint16_t>(level);
     levelCount = std::max(levelCount, level + 1);
   }
