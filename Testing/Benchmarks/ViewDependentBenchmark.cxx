@@ -13,7 +13,9 @@
  * Policies, each over the whole path: full resolution (its frames are the
  * PSNR references), view-dependent fixed accuracy (tau = 1 px), the uniform
  * TOM at the triangle count of that tau front in the same frame, and the
- * budget-driven front in vtkTimeCriticalRenderer (active set, 100 ms).
+ * budget-driven front in vtkTimeCriticalRenderer (active set, 100 ms; its
+ * pixel threshold, a floor below which budget fronts refine nothing, is 0 by
+ * default so that the budget decides, not tau).
  * OpenMesh's VDPM is listed with the reason it is not run. Per frame:
  * wall-clock frame time around Render() (glFinish, image capture excluded),
  * triangles, refinement time, splits and merges, PSNR (OpenImageIO).
@@ -135,6 +137,9 @@ struct Settings
   int Frames = 120;
   double Target = 0.1;
   double Tau = 1.0;
+  /// Budget fronts refine nothing below their pixel threshold (a floor): 0
+  /// lets the budget alone decide, 1 would cap them at the tau = 1 front.
+  double BudgetTau = 0.0;
   int WarmupFrames = 3;
   int LoopLevels = 1;
   bool Rebuild = false;
@@ -160,6 +165,8 @@ void PrintUsage()
        "  --policies L       comma list of full,tau1,uniform,budget,vdpm (default all; 'full'\n"
        "                     gives the PSNR references, 'uniform' needs 'tau1')\n"
        "  --tau PX           pixel threshold of the fixed-accuracy policy (default 1)\n"
+       "  --budget-tau PX    pixel threshold (floor) of the budget fronts (default 0: the\n"
+       "                     budget alone decides; with 1 they stop at the tau=1 front)\n"
        "  --target S         target frame time of the budget policy and --mixed (default 0.1)\n"
        "  --warmup N         untimed frames at the first camera before each policy (default 3)\n"
        "  --loop N           Loop subdivisions of igea (default 1: ~1.07M triangles)\n"
@@ -235,6 +242,10 @@ Settings ParseArguments(int argc, char* argv[])
     else if (arg == "--tau")
     {
       settings.Tau = real(0.0);
+    }
+    else if (arg == "--budget-tau")
+    {
+      settings.BudgetTau = real(0.0);
     }
     else if (arg == "--target")
     {
@@ -882,7 +893,7 @@ void ViewDependent::Configure(PolicyKind kind)
   m->SetRefinementMode(kind == PolicyKind::FixedAccuracy
       ? vtkMultiresolutionPolyDataMapper::FIXED_ACCURACY
       : vtkMultiresolutionPolyDataMapper::BUDGET);
-  m->SetPixelThreshold(this->Options.Tau);
+  m->SetPixelThreshold(kind == PolicyKind::Budget ? this->Options.BudgetTau : this->Options.Tau);
   m->BackFaceSimplificationOn();
   m->SilhouetteRefinementOn();
   m->HighlightRefinementOn();
@@ -932,7 +943,7 @@ PolicyRun ViewDependent::Run(const PolicyInfo& policy)
     tc->SetPolicyToActiveSet();
     tc->ViewDependentRefinementOn();
     tc->SetRefinementModeToBudget();
-    tc->SetPixelThreshold(this->Options.Tau);
+    tc->SetPixelThreshold(this->Options.BudgetTau);
     this->Use(tc);
     this->MoveTo(0);
     const Clock::time_point start = Clock::now();
@@ -1279,7 +1290,7 @@ MixedResult RunMixed(const Settings& settings, const LargeObject& object)
     tc->SetPolicyToActiveSet();
     tc->ViewDependentRefinementOn();
     tc->SetRefinementModeToBudget();
-    tc->SetPixelThreshold(settings.Tau);
+    tc->SetPixelThreshold(settings.BudgetTau);
     window->AddRenderer(tc);
     moveTo(tc, 0);
     Clock::time_point start = Clock::now();
@@ -1505,6 +1516,7 @@ void WriteJson(const Settings& settings, const LargeObject& object, const Object
   }
   out << "{\n  \"benchmark\": \"ViewDependentBenchmark\",\n";
   out << "  \"settings\": {\"frames\": " << settings.Frames << ", \"tau\": " << Number(settings.Tau)
+      << ", \"budget_tau\": " << Number(settings.BudgetTau)
       << ", \"target_frame_time\": " << Number(settings.Target) << ", \"quick\": "
       << (settings.Quick ? "true" : "false") << ", \"warmup_frames\": " << settings.WarmupFrames
       << ", \"loop_levels\": " << settings.LoopLevels << ", \"window\": [" << WindowSize << ", "
