@@ -385,17 +385,31 @@ double ViewDependentRefinement::Priority(uint32_t v) const
     dy = cy - this->EyeY;
     dz = cz - this->EyeZ;
     const double dist = std::sqrt(dx * dx + dy * dy + dz * dz);
+    if (!(node.Error > 0.0f))
+    {
+      return 0.0;
+    }
+    // The node's surface is at least dist - r away, and nothing nearer than
+    // the near plane is drawn: project from the larger of the two, so that a
+    // node around the eye gets a large but finite priority (a huge tau still
+    // gives the coarsest mesh). Without a near plane: 1/1000 of the node's size.
+    const double nearPlane = this->View.NearDistance > 0.0
+      ? this->View.NearDistance
+      : 1e-3 * std::max(static_cast<double>(r), static_cast<double>(node.Error));
+    projected = node.Error * this->PixelsPerUnit / std::max(dist - r, nearPlane);
     if (dist <= r)
     {
-      // Eye inside the bounding sphere: every direction, unbounded projection.
-      return node.Error > 0.0f ? std::numeric_limits<double>::infinity() : 0.0;
+      // Eye inside the bounding sphere: every view direction, so a silhouette
+      // and a highlight, never back-facing.
+      const double f = (this->SilhouetteRefinement ? this->SilhouetteFactor : 1.0) *
+        (this->HighlightRefinement ? this->HighlightFactor : 1.0);
+      return f > 0.0 ? projected / f : std::numeric_limits<double>::infinity();
     }
     dx /= dist;
     dy /= dist;
     dz /= dist;
     sinB = r / dist;
     cosB = std::sqrt(1.0 - sinB * sinB);
-    projected = node.Error * this->PixelsPerUnit / (dist - r);
   }
   double factor = 1.0;
   // Angles to the view directions of the sphere: theta (cone) + beta (sphere).

@@ -29,6 +29,14 @@ struct RefinementView
   double FrustumPlanes[6][4] = {};
   /// Direction towards the first light (normalized internally); used by highlight refinement.
   double LightDirection[3] = { 0.0, 0.0, 1.0 };
+  /**
+   * Perspective: distance of the near clipping plane (world units, > 0), the
+   * smallest distance at which an error is projected: nothing nearer is drawn.
+   * A node whose bounding sphere holds the eye is thus projected from this
+   * distance instead of getting an infinite priority. 0 (default): 1/1000 of
+   * the node's radius (VTK's near/far clipping tolerance applied to the node).
+   */
+  double NearDistance = 0.0;
 };
 
 /// What one update did.

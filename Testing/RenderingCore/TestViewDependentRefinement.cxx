@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cstdio>
 #include <cmath>
 #include <memory>
 #include <random>
@@ -33,6 +34,8 @@ struct Fixture
   MergeTree Tree;
   std::vector<double> Points; // TOM order
   long long Euler = 0;
+  size_t BoundaryLoops = 0; // of the input; every front keeps them
+  size_t PinchVertices = 0; // of the input; fronts are then not checked for pinches or loops
   double Center[3] = { 0, 0, 0 };
   double Size = 1;
   std::vector<uint32_t> Event; // block vertex of each triangle (UINT32_MAX: base)
@@ -64,7 +67,10 @@ std::shared_ptr<Fixture> MakeFixture(const std::string& name, const tct::Triangl
     f->Size = std::max(f->Size, hi[k] - lo[k]);
   }
   f->Tree = ComputeMergeTree(f->Mesh, f->Points.data(), nullptr);
-  f->Euler = tct::ComputeTopology(input).EulerCharacteristic;
+  const tct::MeshTopology topology = tct::ComputeTopology(input);
+  f->Euler = topology.EulerCharacteristic;
+  f->BoundaryLoops = topology.NumberOfBoundaryLoops;
+  f->PinchVertices = topology.NumberOfNonManifoldVertices;
   const TOMTraversal traversal(f->Mesh);
   for (uint32_t t = 0; t < f->Mesh.GetNumberOfTriangles(); ++t)
   {
@@ -82,7 +88,7 @@ const std::vector<std::shared_ptr<Fixture>>& ClosedFixtures()
   {
     fixtures.push_back(MakeFixture("sphere", tct::MakeSphere(4)));
     fixtures.push_back(MakeFixture("torus", tct::MakeTorus(48, 20, 3, 0.3)));
-    for (const char* name : { "spot.obj", "cow.obj", "stanford-bunny.obj" })
+    for (const char* name : { "spot.obj", "cow.obj", "fandisk.obj", "stanford-bunny.obj" })
     {
       const tct::SharedMesh shared = tct::FindSharedMesh(name);
       if (!shared.Available)
@@ -156,8 +162,10 @@ std::vector<std::array<uint32_t, 3>> DisplayTriangles(const ViewDependentRefinem
  * Every front invariant: base vertices displayed, closed under parent; the
  * display triangles are exactly Hoppe's selectively refined mesh of the front
  * (triangle t iff its block vertex is displayed, corners mapped to their
- * nearest displayed ancestor); closed, edge-manifold, consistently oriented,
- * the input's Euler characteristic, no degenerate or duplicate triangles.
+ * nearest displayed ancestor); edge-manifold, consistently oriented, the
+ * input's Euler characteristic and boundary loops (closed when it is; without
+ * pinch vertices unless the input has some), no degenerate or duplicate
+ * triangles.
  */
 void CheckFront(const Fixture& f, const ViewDependentRefinement& r, const std::string& where)
 {
@@ -210,10 +218,17 @@ void CheckFront(const Fixture& f, const ViewDependentRefinement& r, const std::s
   mesh.Triangles.assign(r.GetTriangles(), r.GetTriangles() + 3 * size_t(r.GetNumberOfDisplayTriangles()));
   const tct::MeshTopology topology = tct::ComputeTopology(mesh);
   ASSERT_EQ(topology.NumberOfDegenerateTriangles, 0u);
-  ASSERT_TRUE(topology.IsClosed()) << topology.NumberOfBoundaryEdges << " boundary, "
-                                   << topology.NumberOfNonManifoldEdges << " non-manifold edges";
+  ASSERT_EQ(topology.NumberOfNonManifoldEdges, 0u);
+  if (f.BoundaryLoops == 0)
+  {
+    ASSERT_TRUE(topology.IsClosed()) << topology.NumberOfBoundaryEdges << " boundary edges";
+  }
   ASSERT_TRUE(topology.IsConsistentlyOriented());
-  ASSERT_EQ(topology.NumberOfNonManifoldVertices, 0u);
+  if (f.PinchVertices == 0)
+  {
+    ASSERT_EQ(topology.NumberOfNonManifoldVertices, 0u);
+    ASSERT_EQ(topology.NumberOfBoundaryLoops, f.BoundaryLoops);
+  }
   ASSERT_EQ(topology.EulerCharacteristic, f.Euler);
 }
 
@@ -298,6 +313,101 @@ Facing CountFacing(const Fixture& f, const ViewDependentRefinement& r, const Ref
     }
   }
   return out;
+}
+}
+
+namespace
+{
+/// Open inputs: a bumpy grid, a hemisphere (one boundary loop each) and the
+/// bunny (five holes) when present.
+const std::vector<std::shared_ptr<Fixture>>& BoundaryFixtures()
+{
+  static std::vector<std::shared_ptr<Fixture>> fixtures;
+  if (fixtures.empty())
+  {
+    tct::TriangleMesh grid = tct::MakeGrid(40, 32);
+    for (size_t i = 0; i < grid.NumberOfPoints(); ++i)
+    {
+      const double x = grid.Points[3 * i], y = grid.Points[3 * i + 1];
+      grid.Points[3 * i + 2] = 0.08 * std::sin(7 * x) * std::sin(5 * y) + 0.02 * std::cos(23 * x * y);
+    }
+    fixtures.push_back(MakeFixture("bumpy grid", grid));
+    // Upper half of an icosphere (triangles wholly at z >= 0): a disk.
+    const tct::TriangleMesh sphere = tct::MakeSphere(4);
+    tct::TriangleMesh half;
+    half.Points = sphere.Points;
+    for (size_t t = 0; t < sphere.NumberOfTriangles(); ++t)
+    {
+      const uint32_t* c = &sphere.Triangles[3 * t];
+      if (std::min({ sphere.Points[3 * size_t(c[0]) + 2], sphere.Points[3 * size_t(c[1]) + 2],
+            sphere.Points[3 * size_t(c[2]) + 2] }) >= -1e-12)
+      {
+        half.Triangles.insert(half.Triangles.end(), c, c + 3);
+      }
+    }
+    fixtures.push_back(MakeFixture("hemisphere", tct::RemoveUnusedPoints(half)));
+    const tct::SharedMesh bunny = tct::FindSharedMesh("stanford-bunny.obj");
+    if (bunny.Available)
+    {
+      fixtures.push_back(MakeFixture(
+        "stanford-bunny.obj", tct::RemoveUnusedPoints(tct::WeldPoints(tct::LoadMesh(bunny.Path)))));
+    }
+  }
+  return fixtures;
+}
+
+/**
+ * `views` random views in sequence, fixed accuracy and budget alternating,
+ * with or without wing dependencies: every incremental front and every front
+ * from scratch passes CheckFront, and the two are the same front in fixed
+ * mode (budget mode starts from the previous front by design, so there the
+ * two differ in about half the views and are only checked apart). Returns the
+ * forced splits from scratch (fixed mode).
+ */
+uint64_t CheckRandomViews(const Fixture& f, bool wings, int views, unsigned seed)
+{
+  SCOPED_TRACE(std::string(wings ? "wing" : "row") + " dependencies");
+  ViewDependentRefinement incremental, scratch;
+  incremental.SetWingDependencies(wings);
+  scratch.SetWingDependencies(wings);
+  incremental.Initialize(f.Mesh, f.Tree, f.Points.data());
+  scratch.Initialize(f.Mesh, f.Tree, f.Points.data());
+  std::mt19937 rng(seed);
+  const uint32_t full = f.Mesh.GetNumberOfTriangles();
+  uint64_t forced = 0;
+  for (int i = 0; i < views && !::testing::Test::HasFatalFailure(); ++i)
+  {
+    const RefinementView view = RandomView(f, rng);
+    for (ViewDependentRefinement* r : { &incremental, &scratch })
+    {
+      r->SetView(view);
+      r->SetPixelThreshold(0.5 * (1 + i % 6));
+      Configure(*r, i);
+    }
+    const bool budget = i % 2 == 1;
+    const uint32_t triangles = std::max(f.Mesh.BaseTriangleCount, full / (2 + i % 7));
+    const RefinementStatistics s =
+      budget ? incremental.UpdateBudget(triangles) : incremental.UpdateFixedAccuracy();
+    scratch.Reset();
+    const RefinementStatistics t =
+      budget ? scratch.UpdateBudget(triangles) : scratch.UpdateFixedAccuracy();
+    EXPECT_EQ(s.BlockedSplits, 0u);
+    EXPECT_EQ(t.BlockedSplits, 0u);
+    const std::string where = (budget ? "budget view " : "fixed view ") + std::to_string(i);
+    CheckFront(f, incremental, "incremental " + where);
+    CheckFront(f, scratch, "from scratch " + where);
+    if (budget)
+    {
+      EXPECT_LE(s.DisplayTriangles, triangles + 64) << f.Name << " " << where;
+      EXPECT_LE(t.DisplayTriangles, triangles + 64) << f.Name << " " << where;
+    }
+    else
+    {
+      forced += t.ForcedSplits;
+      EXPECT_TRUE(Front(incremental) == Front(scratch)) << f.Name << " " << where;
+    }
+  }
+  return forced;
 }
 }
 
@@ -633,11 +743,17 @@ TEST(ViewDependentRefinement, SilhouetteAndHighlightRefinement)
       totalHighOn += h.DisplayTriangles;
       totalHighOff += plain.Front + plain.Back + plain.Grazing;
     }
-    // Relative growth near silhouettes beats the growth facing the viewer.
+    // Relative growth near silhouettes beats the growth facing the viewer,
+    // except on fandisk: a node across one of its sharp (~90 degree) creases
+    // has a normal cone holding view-perpendicular directions from every
+    // view, so front-facing crease regions grow as much as real silhouettes.
     EXPECT_GT(grazingOn, grazingOff) << f.Name;
-    EXPECT_GT(double(grazingOn) / std::max<uint64_t>(1, grazingOff),
-      double(frontOn + 1) / double(frontOff + 1))
-      << f.Name;
+    if (f.Name != "fandisk.obj")
+    {
+      EXPECT_GT(double(grazingOn) / std::max<uint64_t>(1, grazingOff),
+        double(frontOn + 1) / double(frontOff + 1))
+        << f.Name;
+    }
     EXPECT_GT(highOn, highOff) << f.Name;
     (void)totalHighOn;
     (void)totalHighOff;
@@ -714,4 +830,84 @@ TEST(ViewDependentRefinement, SharedMeshesPresent)
     GTEST_SKIP() << "shared data folder absent";
   }
   EXPECT_NE(SharedFixture("spot.obj"), nullptr) << "spot.obj should be a closed manifold";
+}
+
+// Meshes with boundaries: every front keeps the boundary loops, the Euler
+// characteristic, edge-manifoldness and orientation, display == selectively
+// refined mesh, incremental == from scratch, for both dependency modes.
+TEST(ViewDependentRefinement, BoundaryInvariants)
+{
+  for (const auto& fp : BoundaryFixtures())
+  {
+    const Fixture& f = *fp;
+    ASSERT_GT(f.BoundaryLoops, 0u) << f.Name;
+    ASSERT_EQ(f.PinchVertices, 0u) << f.Name;
+    const uint64_t rows = CheckRandomViews(f, false, 40, 31);
+    const uint64_t wings = CheckRandomViews(f, true, 40, 31);
+    EXPECT_LE(wings, rows) << f.Name;
+  }
+  const tct::SharedMesh bunny = tct::FindSharedMesh("stanford-bunny.obj");
+  if (!bunny.Available)
+  {
+    GTEST_SKIP() << "stanford-bunny.obj absent: generated open meshes only";
+  }
+}
+
+// A node whose bounding sphere holds the eye is projected from the near plane
+// (or 1/1000 of its size), not with an infinite priority: a huge tau gives the
+// coarsest mesh from any eye, even one inside the object.
+TEST(ViewDependentRefinement, EyeInsideNodeIsFinite)
+{
+  for (const auto& fp : ClosedFixtures())
+  {
+    const Fixture& f = *fp;
+    ViewDependentRefinement r;
+    r.Initialize(f.Mesh, f.Tree, f.Points.data());
+    RefinementView view;
+    for (int k = 0; k < 3; ++k)
+    {
+      view.Eye[k] = f.Center[k]; // inside every root's sphere
+    }
+    view.Direction[0] = 1;
+    view.Direction[1] = view.Direction[2] = 0;
+    for (double near : { 0.0, 1e-3 * f.Size })
+    {
+      view.NearDistance = near;
+      r.SetView(view);
+      r.SetPixelThreshold(1e30);
+      const RefinementStatistics c = r.UpdateFixedAccuracy();
+      EXPECT_EQ(c.DisplayTriangles, f.Mesh.BaseTriangleCount) << f.Name;
+      CheckFront(f, r, "eye at the centre, huge tau");
+      r.SetPixelThreshold(1.0);
+      EXPECT_GT(r.UpdateFixedAccuracy().DisplayTriangles, f.Mesh.BaseTriangleCount) << f.Name;
+      CheckFront(f, r, "eye at the centre, tau 1");
+    }
+  }
+}
+
+// Evidence for wing dependencies on every shared mesh that loads (pinch
+// vertices: cow, teapot; then only Euler, orientation and edge-manifoldness).
+TEST(ViewDependentRefinement, SharedMeshesBothDependencyModes)
+{
+  int meshes = 0;
+  for (const char* name :
+    { "spot.obj", "cow.obj", "fandisk.obj", "homer.obj", "teapot.obj", "stanford-bunny.obj" })
+  {
+    const tct::SharedMesh shared = tct::FindSharedMesh(name);
+    if (!shared.Available)
+    {
+      continue;
+    }
+    const auto f =
+      MakeFixture(name, tct::RemoveUnusedPoints(tct::WeldPoints(tct::LoadMesh(shared.Path))));
+    const uint64_t rows = CheckRandomViews(*f, false, 16, 41);
+    const uint64_t wings = CheckRandomViews(*f, true, 16, 41);
+    std::printf("%s: forced splits from scratch, rows %llu, wings %llu\n", name,
+      static_cast<unsigned long long>(rows), static_cast<unsigned long long>(wings));
+    ++meshes;
+  }
+  if (meshes == 0)
+  {
+    GTEST_SKIP() << "shared data folder absent";
+  }
 }
