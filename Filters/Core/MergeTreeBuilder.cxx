@@ -44,7 +44,8 @@
  * once the next candidate costs too much more than where the greedy order
  * would be after as many collapses. The untried rest of the list (and the
  * re-queued alternatives) are still exact for their untouched vertices, so
- * they simply join the next level's list. A capped level is thin by choice,
+ * they simply join the next level's list (the rest, sorted already, by a
+ * merge). A capped level is thin by choice,
  * not because constraints hold vertices up: it does not release them.
  */
 
@@ -175,11 +176,13 @@ private:
   uint32_t MaxTakenKey = 0;    // costliest collapse taken so far (ordered bits)
   std::vector<Entry> Current;  // this level's candidates, by key
   size_t Position = 0;         // next one in Current
+  size_t RestStart = 0;        // Current[RestStart..]: left untried by a capped level
   std::vector<Entry> Requeued; // min-heap: legal alternatives costlier than their turn
   std::vector<Entry> Next;     // fresh entries of the touched vertices
-  std::vector<Entry> Deferred; // untouched vertices whose target is touched, and
-                               // those a capped level left untried
-  std::vector<Entry> Buffer;   // radix sort
+  std::vector<Entry> Deferred; // untouched vertices whose target is touched, and the
+                               // re-queued ones a capped level left
+  std::vector<Entry> Fresh;    // next level's entries besides the untried rest
+  std::vector<Entry> Buffer;   // radix sort and merge
   std::vector<uint8_t> Touched; // == Stamp: touched in this level (then the engine's tag
                                 // of the vertex is its entry in Next)
   uint8_t Stamp = 0;
@@ -238,22 +241,42 @@ void LevelSchedule::CollectAll()
 //------------------------------------------------------------------------------
 void LevelSchedule::CollectNext()
 {
-  this->Current.clear();
+  // The fresh and deferred entries, sorted, merged with what a capped level
+  // left untried (sorted already, most of the list early on).
+  this->Fresh.clear();
   for (const Entry& entry : this->Next)
   {
     if (entry.Vertex != Invalid)
     {
-      this->Current.push_back(entry);
+      this->Fresh.push_back(entry);
     }
   }
   for (const Entry& entry : this->Deferred)
   {
     if (!this->IsTouched(entry.Vertex)) // else its fresh entry came from Next
     {
-      this->Current.push_back(entry);
+      this->Fresh.push_back(entry);
     }
   }
-  SortByKey(this->Current, this->Buffer);
+  SortByKey(this->Fresh, this->Buffer);
+  this->Buffer.clear();
+  auto a = this->Fresh.cbegin();
+  const auto aEnd = this->Fresh.cend();
+  for (auto b = this->Current.cbegin() + static_cast<std::ptrdiff_t>(this->RestStart);
+       b != this->Current.cend(); ++b)
+  {
+    if (this->IsTouched(b->Vertex))
+    {
+      continue; // its fresh entry came from Next
+    }
+    for (; a != aEnd && a->Key <= b->Key; ++a)
+    {
+      this->Buffer.push_back(*a);
+    }
+    this->Buffer.push_back(*b);
+  }
+  this->Buffer.insert(this->Buffer.end(), a, aEnd);
+  this->Current.swap(this->Buffer);
 }
 
 //------------------------------------------------------------------------------
@@ -351,6 +374,7 @@ bool LevelSchedule::RunLevel(uint16_t level, uint32_t& applied, bool& capped)
   this->Next.clear();
   this->Deferred.clear();
   this->Position = 0;
+  this->RestStart = this->Current.size();
   applied = 0;
   capped = false;
   const uint32_t n = e.GetNumberOfVertices();
@@ -369,8 +393,7 @@ bool LevelSchedule::RunLevel(uint16_t level, uint32_t& applied, bool& capped)
       // The rest waits for the next level, unchanged (untouched vertices keep
       // their keys; touched ones have fresh entries in Next).
       capped = true;
-      this->Deferred.insert(
-        this->Deferred.end(), this->Current.begin() + this->Position, this->Current.end());
+      this->RestStart = this->Position;
       this->Deferred.insert(this->Deferred.end(), this->Requeued.begin(), this->Requeued.end());
       this->Requeued.clear();
       return true;
@@ -440,6 +463,7 @@ bool LevelSchedule::Run()
   this->Next.reserve(n);
   this->Deferred.reserve(n);
   this->Buffer.reserve(n);
+  this->Fresh.reserve(n);
   this->Requeued.reserve(1024);
   this->Touched.assign(n, uint8_t(0));
   this->StepLevel.reserve(n);
