@@ -18,7 +18,8 @@
  * LightDirection, and back-facing regions stay coarse. Regions outside the
  * four side planes of the view frustum stay coarse (the camera's clipping
  * range is not used). With SetRefinementModeToTriangleBudget() the front is
- * refined where the projected error is largest until TriangleBudget triangles.
+ * refined where the projected error is largest until TriangleBudget triangles,
+ * never below PixelThreshold (a floor: set it to 0 to spend the whole budget).
  *
  * Every front is a fold-free triangulation of the input's topology: a closed
  * manifold input gives a closed manifold output with the same Euler
