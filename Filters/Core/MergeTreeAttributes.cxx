@@ -272,36 +272,34 @@ MergeTree ComputeMergeTree(const TOMMesh& tom, const double* points, const uint1
   }
   auto P = [&node](uint32_t v) -> Vec { return { node[v].X, node[v].Y, node[v].Z }; };
 
-  // Leaf cones: every original face normal around the vertex (conservative,
-  // unlike the vertex normal alone); axis = area-weighted mean.
-  std::vector<Cone> cone(N, Cone{ { 0.0, 0.0, 0.0 }, 1.0 }); // sum of normals, min cosine
-  // Fans live in one arena: an event writes the new fan of u (its living
-  // corners, then v's survivors) at the end, as contiguous corners whose
-  // triangles load in parallel (a linked list would chain the misses).
-  std::vector<uint32_t> fans;
+  // Fans of the full-resolution mesh (corners 3t + k by vertex, t ascending)
+  // in one arena: an event writes the new fan of u (its living corners, then
+  // v's survivors) at the end, as contiguous corners whose triangles load in
+  // parallel (a linked list would chain the misses).
+  std::vector<uint32_t> fans(3 * size_t(T) + 16 * size_t(N - B) + 64);
   size_t fanEnd = 3 * size_t(T);
+  // Leaf cones: every original face normal around the vertex (conservative,
+  // unlike the vertex normal alone); axis = area-weighted mean. Computed per
+  // vertex over its fan, so the cones are written in order; sums run in
+  // triangle order as before, so the result is the same to the bit.
+  std::vector<Cone> cone(N);
   {
-    std::vector<Vec> faceNormal(T);
-    constexpr uint32_t Ahead = 16; // triangles whose vertices are prefetched
+    constexpr uint32_t Ahead = 8; // triangles whose vertices are prefetched
+    std::vector<Vec> faceArea(T); // cross products: twice the area times the normal
     for (uint32_t t = 0; t < T; ++t)
     {
-      const uint32_t* tri = tom.Triangles.data() + 3 * size_t(t);
+      const uint32_t* c = tom.Triangles.data() + 3 * size_t(t);
       if (t + Ahead < T)
       {
         for (int k = 0; k < 3; ++k)
         {
-          Prefetch(&node[tri[3 * Ahead + k]]);
-          Prefetch(&cone[tri[3 * Ahead + k]]);
+          Prefetch(&node[c[3 * Ahead + k]]);
         }
       }
-      const Vec n = Cross(Sub(P(tri[1]), P(tri[0])), Sub(P(tri[2]), P(tri[0])));
-      const double len = Norm(n);
-      faceNormal[t] = len > 0.0 ? Vec{ n.X / len, n.Y / len, n.Z / len } : Vec{ 0.0, 0.0, 0.0 };
+      faceArea[t] = Cross(Sub(P(c[1]), P(c[0])), Sub(P(c[2]), P(c[0])));
       for (int k = 0; k < 3; ++k)
       {
-        Vec& s = cone[tri[k]].Axis;
-        s = { s.X + n.X, s.Y + n.Y, s.Z + n.Z };
-        ++node[tri[k]].FanCount;
+        ++node[c[k]].FanCount;
       }
     }
     uint32_t fanStart = 0;
@@ -310,60 +308,68 @@ MergeTree ComputeMergeTree(const TOMMesh& tom, const double* points, const uint1
       node[v].FanStart = fanStart;
       fanStart += node[v].FanCount;
       node[v].FanCount = 0;
-      const Vec sum = cone[v].Axis;
-      const double len = Norm(sum);
-      if (len > 0.0)
-      {
-        cone[v].Axis = { sum.X / len, sum.Y / len, sum.Z / len };
-      }
-      else
-      {
-        cone[v].Axis = { 0.0, 0.0, 1.0 };
-        cone[v].Angle = -1.0; // no usable face: any direction
-      }
     }
-    // Fans of the full-resolution mesh, and the smallest cosine to the axis.
-    fans.resize(3 * size_t(T) + 16 * size_t(N - B) + 64);
     for (uint32_t t = 0; t < T; ++t)
     {
-      const uint32_t* tri = tom.Triangles.data() + 3 * size_t(t);
+      const uint32_t* c = tom.Triangles.data() + 3 * size_t(t);
       if (t + Ahead < T)
       {
         for (int k = 0; k < 3; ++k)
         {
-          Prefetch(&node[tri[3 * Ahead + k]]);
-          Prefetch(&cone[tri[3 * Ahead + k]]);
+          const Node& n = node[c[3 * Ahead + k]];
+          Prefetch(&fans[n.FanStart + n.FanCount]);
         }
       }
-      if (t + Ahead / 2 < T)
+      if (t + 2 * Ahead < T)
       {
         for (int k = 0; k < 3; ++k)
         {
-          const Node& n = node[tri[3 * (Ahead / 2) + k]];
-          Prefetch(&fans[n.FanStart + n.FanCount]);
+          Prefetch(&node[c[6 * Ahead + k]]);
         }
       }
       for (uint32_t k = 0; k < 3; ++k)
       {
-        Node& n = node[tri[k]];
+        Node& n = node[c[k]];
         fans[n.FanStart + n.FanCount++] = 3 * t + k;
-      }
-      const Vec& fn = faceNormal[t];
-      if (fn.X == 0.0 && fn.Y == 0.0 && fn.Z == 0.0)
-      {
-        continue; // zero-area face: no normal to bound
-      }
-      for (int k = 0; k < 3; ++k)
-      {
-        Cone& c = cone[tri[k]];
-        c.Angle = std::min(c.Angle, Dot(c.Axis, fn));
       }
     }
     for (uint32_t v = 0; v < N; ++v)
     {
-      const double minCos = cone[v].Angle;
-      cone[v].Angle =
-        minCos <= -1.0 ? Pi : std::acos(std::max(-1.0, std::min(1.0, minCos))) + ConeSlack;
+      if (v + 4 < N)
+      {
+        const Node& n = node[v + 4];
+        for (uint32_t i = 0; i < n.FanCount; ++i)
+        {
+          Prefetch(&faceArea[fans[n.FanStart + i] / 3]);
+        }
+      }
+      const uint32_t* f = fans.data() + node[v].FanStart;
+      const uint32_t count = node[v].FanCount;
+      Vec sum = { 0.0, 0.0, 0.0 };
+      for (uint32_t i = 0; i < count; ++i)
+      {
+        const Vec& a = faceArea[f[i] / 3];
+        sum = { sum.X + a.X, sum.Y + a.Y, sum.Z + a.Z };
+      }
+      const double len = Norm(sum);
+      if (!(len > 0.0))
+      {
+        cone[v] = { { 0.0, 0.0, 1.0 }, Pi }; // no usable face: any direction
+        continue;
+      }
+      const Vec axis = { sum.X / len, sum.Y / len, sum.Z / len };
+      double minCos = 1.0;
+      for (uint32_t i = 0; i < count; ++i)
+      {
+        const Vec& a = faceArea[f[i] / 3];
+        const double area = Norm(a);
+        if (area > 0.0) // zero-area face: no normal to bound
+        {
+          minCos = std::min(minCos, Dot(axis, Vec{ a.X / area, a.Y / area, a.Z / area }));
+        }
+      }
+      cone[v] = { axis,
+        minCos <= -1.0 ? Pi : std::acos(std::max(-1.0, std::min(1.0, minCos))) + ConeSlack };
     }
   }
 
