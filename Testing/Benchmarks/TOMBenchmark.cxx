@@ -9,8 +9,10 @@
  *  4. Hausdorff distance of TOM resolutions against vtkQuadricDecimation at the
  *     same triangle count (and meshopt_simplify, which like the TOM keeps a subset
  *     of the input vertices, as a reference without goal);
- *  5. MergeTreeBuilder: build rate, levels, and the error of its TOM (levels of
- *     independent collapses) against the greedy TOM's at 50/25/10/5%.
+ *  5. MergeTreeBuilder: build rate (whole and collapse part), levels, and the
+ *     error of its TOM (levels of independent collapses) against the greedy
+ *     TOM's at 50/25/10/5%, with the default level cost cap and, as a sweep of
+ *     levels against error, other caps and none (the paper's maximal levels).
  *
  * Prints one table per section and writes everything to JSON. Missed goals
  * are reported, not failed: the exit status is nonzero only for errors
@@ -90,6 +92,8 @@ struct Settings
 const std::vector<double> TraversalResolutions = { 1.0, 0.5, 0.25, 0.1, 0.05 };
 const std::vector<double> HausdorffResolutions = { 0.5, 0.25, 0.1 };
 const std::vector<double> MergeTreeResolutions = { 0.5, 0.25, 0.1, 0.05 };
+/// MergeBuildOptions::LevelCostRatio of the sweep besides the default (0: no cap).
+const std::vector<double> MergeTreeCostRatios = { 0.0, 1.5, 4.0 };
 constexpr double ComparisonFraction = 0.1; ///< quadric and meshopt keep 10% of the triangles
 
 //------------------------------------------------------------------------------
@@ -419,8 +423,10 @@ const Goal TraversalGoal{ "traversal rate", 100.0, true, " Mtri/s" };
 const Goal ChainGoal{ "extra vertices traversed", 75.0, false, " %" };
 const Goal HausdorffGoal{ "Hausdorff TOM / quadric", 1.10, false, "" };
 const Goal MergeTreeBuildGoal{ "merge-tree build rate", 1.0, true, " Mtri/s" };
+const Goal MergeTreeErrorGoal{ "merge-tree TOM error / greedy TOM's (worst of 50-5%)", 1.5,
+  false, "" };
 const std::vector<const Goal*> AllGoals = { &BuildGoal, &MemoryGoal, &TraversalGoal, &ChainGoal,
-  &HausdorffGoal, &MergeTreeBuildGoal };
+  &HausdorffGoal, &MergeTreeBuildGoal, &MergeTreeErrorGoal };
 
 class GoalLog
 {
@@ -849,13 +855,48 @@ struct QualityFigures
   double Ratio() const { return this->Tom.Symmetric() / this->Quadric.Symmetric(); }
 };
 
+/// Error of the merge tree's TOM over the greedy TOM's (1 where both are 0).
+double ErrorRatio(double mergeTree, double greedy)
+{
+  if (greedy > 0.0)
+  {
+    return mergeTree / greedy;
+  }
+  return mergeTree > 0.0 ? std::numeric_limits<double>::infinity() : 1.0;
+}
+
 /// 5. Merge tree: build time, levels, error (builder's estimate / diagonal) of both TOMs.
 struct MergeTreeFigures
 {
-  Timing Build;
+  /// One setting of the level cost cap: its levels and error per MergeTreeResolutions.
+  struct Setting
+  {
+    double CostRatio = 0.0;
+    unsigned Levels = 0;
+    std::vector<double> Error;
+  };
+
+  Timing Build;                  ///< default options
   double AttributeSeconds = 0.0; ///< of which ComputeMergeTree (one run, timed apart)
   unsigned Levels = 0;
+  double CostRatio = 0.0;                          ///< the default LevelCostRatio
   std::vector<double> MergeTreeError, GreedyError; // per MergeTreeResolutions
+  std::vector<Setting> Sweep; // per MergeTreeCostRatios, one untimed build each
+
+  /// The build without ComputeMergeTree: the collapses, levels and TOM.
+  double CollapseSeconds() const
+  {
+    return std::max(this->Build.Median - this->AttributeSeconds, 1e-9);
+  }
+  double WorstRatio() const
+  {
+    double worst = 0.0;
+    for (size_t i = 0; i < this->MergeTreeError.size(); ++i)
+    {
+      worst = std::max(worst, ErrorRatio(this->MergeTreeError[i], this->GreedyError[i]));
+    }
+    return worst;
+  }
 };
 
 struct MeshReport
@@ -922,6 +963,7 @@ MergeTreeFigures MeasureMergeTree(
   });
   ValidateTOM(input, tree.TOM);
   figures.Levels = tree.Tree.LevelCount;
+  figures.CostRatio = timecritical::MergeTreeBuildOptions().LevelCostRatio;
   std::vector<double> positions;
   for (uint32_t id : tree.TOM.VertexOrder)
   {
@@ -941,6 +983,22 @@ MergeTreeFigures MeasureMergeTree(
   {
     figures.MergeTreeError.push_back(errorAt(tree.TOM, r));
     figures.GreedyError.push_back(errorAt(greedy, r));
+  }
+  for (double ratio : MergeTreeCostRatios)
+  {
+    timecritical::MergeTreeBuildOptions options;
+    options.LevelCostRatio = ratio;
+    tree = timecritical::MergeTreeBuilder(options).Build(
+      mesh.Points.data(), mesh.NumberOfPoints(), mesh.Triangles.data(), mesh.NumberOfTriangles());
+    ValidateTOM(input, tree.TOM);
+    MergeTreeFigures::Setting setting;
+    setting.CostRatio = ratio;
+    setting.Levels = tree.Tree.LevelCount;
+    for (double r : MergeTreeResolutions)
+    {
+      setting.Error.push_back(errorAt(tree.TOM, r));
+    }
+    figures.Sweep.push_back(std::move(setting));
   }
   return figures;
 }
@@ -1078,11 +1136,12 @@ void PrintBuild(const std::vector<MeshReport>& reports, GoalLog& goals)
 void PrintMergeTree(const std::vector<MeshReport>& reports, GoalLog& goals)
 {
   std::vector<std::string> header = { "mesh", "tris", "MT s", "attributes s", "MT Mtri/s",
-    "TOM Mtri/s", "levels", "goal", "status" };
+    "collapse Mtri/s", "TOM Mtri/s", "levels", "goal", "status" };
   for (double r : MergeTreeResolutions)
   {
     header.push_back("err/diag MT:TOM r=" + Fixed(r, 2));
   }
+  header.insert(header.end(), { "worst MT/TOM", "goal", "status" });
   Table table(header);
   for (const MeshReport& m : reports)
   {
@@ -1090,7 +1149,8 @@ void PrintMergeTree(const std::vector<MeshReport>& reports, GoalLog& goals)
     const double t = static_cast<double>(m.Triangles);
     std::vector<std::string> row = { m.Name, Count(m.Triangles), Fixed(f.Build.Median, 4),
       Fixed(f.AttributeSeconds, 4), Fixed(Mtris(t, f.Build.Median), 3),
-      Fixed(Mtris(t, m.Build.Tom.Median), 3), Count(f.Levels) };
+      Fixed(Mtris(t, f.CollapseSeconds()), 3), Fixed(Mtris(t, m.Build.Tom.Median), 3),
+      Count(f.Levels) };
     for (auto& cell : goals.Check(MergeTreeBuildGoal, Mtris(t, f.Build.Median), m.Name))
     {
       row.push_back(std::move(cell));
@@ -1099,12 +1159,46 @@ void PrintMergeTree(const std::vector<MeshReport>& reports, GoalLog& goals)
     {
       row.push_back(Format("%.2e:%.2e", f.MergeTreeError[i], f.GreedyError[i]));
     }
+    row.push_back(Fixed(f.WorstRatio(), 2) + "x");
+    for (auto& cell : goals.Check(MergeTreeErrorGoal, f.WorstRatio(), m.Name))
+    {
+      row.push_back(std::move(cell));
+    }
     table.Add(std::move(row));
   }
   table.Print(std::cout,
-    "5. Merge tree (levels of independent collapses) vs greedy TOM: build (attributes = "
-    "ComputeMergeTree, included), levels, error each reports (quadric estimate / diagonal) at "
-    "r = fraction of triangles");
+    "5. Merge tree (levels of independent collapses, default cost cap) vs greedy TOM: build "
+    "(attributes = ComputeMergeTree, included; collapse = the rest), levels, error each reports "
+    "(quadric estimate / diagonal) at r = fraction of triangles");
+
+  // Levels against error: the cap trades depth for accuracy.
+  std::vector<std::string> sweepHeader = { "mesh", "LevelCostRatio", "levels" };
+  for (double r : MergeTreeResolutions)
+  {
+    sweepHeader.push_back("MT/TOM r=" + Fixed(r, 2));
+  }
+  Table sweep(sweepHeader);
+  for (const MeshReport& m : reports)
+  {
+    const MergeTreeFigures& f = m.MergeTree;
+    auto addRow = [&](const std::string& label, unsigned levels, const std::vector<double>& error) {
+      std::vector<std::string> row = { m.Name, label, Count(levels) };
+      for (size_t i = 0; i < MergeTreeResolutions.size(); ++i)
+      {
+        row.push_back(Fixed(ErrorRatio(error[i], f.GreedyError[i]), 2) + "x");
+      }
+      sweep.Add(std::move(row));
+    };
+    addRow(Fixed(f.CostRatio, 1) + " (default)", f.Levels, f.MergeTreeError);
+    for (const MergeTreeFigures::Setting& setting : f.Sweep)
+    {
+      addRow(setting.CostRatio > 0.0 ? Fixed(setting.CostRatio, 1) : "0 (maximal levels)",
+        setting.Levels, setting.Error);
+    }
+  }
+  sweep.Print(std::cout,
+    "5b. Merge tree: levels against error (merge-tree TOM's / greedy TOM's) per level cost cap "
+    "(MergeTreeBuildOptions::LevelCostRatio; one build each)");
 }
 
 void PrintMemory(const std::vector<MeshReport>& reports, GoalLog& goals)
@@ -1211,13 +1305,35 @@ Json MergeTreeJson(const MeshReport& m)
     errors.Push(Json::Object()
                   .Set("resolution", MergeTreeResolutions[i])
                   .Set("merge_tree_error_over_diagonal", f.MergeTreeError[i])
-                  .Set("greedy_error_over_diagonal", f.GreedyError[i]));
+                  .Set("greedy_error_over_diagonal", f.GreedyError[i])
+                  .Set("ratio_to_greedy", ErrorRatio(f.MergeTreeError[i], f.GreedyError[i])));
   }
+  Json sweep = Json::Array();
+  for (const MergeTreeFigures::Setting& setting : f.Sweep)
+  {
+    Json settingErrors = Json::Array();
+    for (size_t i = 0; i < MergeTreeResolutions.size(); ++i)
+    {
+      settingErrors.Push(Json::Object()
+                           .Set("resolution", MergeTreeResolutions[i])
+                           .Set("merge_tree_error_over_diagonal", setting.Error[i])
+                           .Set("ratio_to_greedy", ErrorRatio(setting.Error[i], f.GreedyError[i])));
+    }
+    sweep.Push(Json::Object()
+                 .Set("level_cost_ratio", setting.CostRatio)
+                 .Set("levels", setting.Levels)
+                 .Set("errors", std::move(settingErrors)));
+  }
+  const double t = static_cast<double>(m.Triangles);
   return ToJson(f.Build)
-    .Set("mtris_per_s", Mtris(static_cast<double>(m.Triangles), f.Build.Median))
+    .Set("mtris_per_s", Mtris(t, f.Build.Median))
     .Set("attributes_s", f.AttributeSeconds)
+    .Set("collapse_mtris_per_s", Mtris(t, f.CollapseSeconds()))
+    .Set("level_cost_ratio", f.CostRatio)
     .Set("levels", f.Levels)
-    .Set("errors", std::move(errors));
+    .Set("worst_ratio_to_greedy", f.WorstRatio())
+    .Set("errors", std::move(errors))
+    .Set("sweep", std::move(sweep));
 }
 
 Json ToJson(const MeshReport& m)
