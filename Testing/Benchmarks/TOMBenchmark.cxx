@@ -92,7 +92,7 @@ struct Settings
 const std::vector<double> TraversalResolutions = { 1.0, 0.5, 0.25, 0.1, 0.05 };
 const std::vector<double> HausdorffResolutions = { 0.5, 0.25, 0.1 };
 const std::vector<double> MergeTreeResolutions = { 0.5, 0.25, 0.1, 0.05 };
-/// MergeBuildOptions::LevelCostRatio of the sweep besides the default (0: no cap).
+/// MergeTreeBuildOptions::LevelCostRatio of the sweep besides the default (0: no cap).
 const std::vector<double> MergeTreeCostRatios = { 0.0, 1.5, 4.0 };
 constexpr double ComparisonFraction = 0.1; ///< quadric and meshopt keep 10% of the triangles
 
