@@ -164,6 +164,11 @@ struct vtkMultiresolutionPolyDataMapper::Internals
     vtkIdType Splits = 0;
     vtkIdType Merges = 0;
     double RefinementTime = 0.0;
+    // Measured splits + merges per second of this front (time-limited budgets).
+    double OperationsPerSecond = 0.0;
+    // Grows while a time-limited step is too small for the next split (whose
+    // forced splits overshoot it), so that the front never stalls short of its budget.
+    double StepScale = 1.0;
     double Resolution = 1.0;
     vtkIdType RenderedTriangles = 0;
     vtkIdType RenderedVertices = 0;
@@ -747,6 +752,17 @@ void vtkMultiresolutionPolyDataMapper::SetPixelThreshold(double tau)
   }
 }
 
+void vtkMultiresolutionPolyDataMapper::SetRefinementTimeLimit(double seconds)
+{
+  if (!(seconds >= 0.0) || std::isinf(seconds))
+  {
+    vtkErrorMacro("RefinementTimeLimit must be a finite number >= 0, not " << seconds
+                                                                         << "; ignored.");
+    return;
+  }
+  SetRenderState(this->RefinementTimeLimit, seconds, this->Internal->ResolutionVersion);
+}
+
 void vtkMultiresolutionPolyDataMapper::SetSilhouetteFactor(double factor)
 {
   if (!(factor > 0.0 && factor <= 1.0))
@@ -1110,6 +1126,14 @@ void vtkMultiresolutionPolyDataMapper::RefineObjects(vtkRenderer* ren, vtkActor*
   }
   std::copy(toLight, toLight + 3, view.LightDirection);
 
+  // The time limit is shared by the fronts drawn this render.
+  int fronts = 0;
+  for (const auto& object : in.Objects)
+  {
+    fronts += object.Refinement && object.Resolution > 0.0;
+  }
+  const double limit = this->RefinementTimeLimit / std::max(fronts, 1);
+
   bool changed = false;
   for (auto& object : in.Objects)
   {
@@ -1125,14 +1149,44 @@ void vtkMultiresolutionPolyDataMapper::RefineObjects(vtkRenderer* ren, vtkActor*
     front.SetSilhouetteFactor(this->SilhouetteFactor);
     front.SetHighlightRefinement(this->HighlightRefinement);
     front.SetHighlightFactor(this->HighlightFactor);
+    double budget = std::min<double>(
+      std::lround(object.Resolution * object.NumberOfTriangles), object.NumberOfTriangles);
+    bool limited = false;
+    if (limit > 0.0)
+    {
+      // A split or a merge changes about two triangles; until a rate is
+      // measured, assume 2 us per operation (llvmpipe-class machines).
+      const double rate = object.OperationsPerSecond > 0.0 ? object.OperationsPerSecond : 5e5;
+      const double step = object.StepScale * (2.0 * limit * rate + 64.0);
+      const double current = front.GetNumberOfDisplayTriangles();
+      const double wanted = budget;
+      budget = std::min(std::max(budget, current - step), current + step);
+      limited = budget != wanted;
+    }
     const auto start = std::chrono::steady_clock::now();
     const timecritical::RefinementStatistics& statistics = this->RefinementMode == FIXED_ACCURACY
       ? front.UpdateFixedAccuracy()
-      : front.UpdateBudget(static_cast<uint32_t>(
-          std::min<double>(std::lround(object.Resolution * object.NumberOfTriangles),
-            static_cast<double>(object.NumberOfTriangles))));
+      : front.UpdateBudget(static_cast<uint32_t>(std::max(budget, 0.0)));
     object.RefinementTime =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double operations = static_cast<double>(statistics.Splits) + statistics.Merges;
+    if (operations > 0)
+    {
+      object.StepScale = 1.0;
+    }
+    else if (limited)
+    {
+      object.StepScale = std::min(2.0 * object.StepScale, 1e6);
+    }
+    if (operations >= 256 && object.RefinementTime > 0.0)
+    {
+      // Smoothed: one slow frame (a page fault, another process) must not
+      // freeze the front.
+      const double measured = operations / object.RefinementTime;
+      object.OperationsPerSecond = object.OperationsPerSecond > 0.0
+        ? 0.7 * object.OperationsPerSecond + 0.3 * measured
+        : measured;
+    }
     object.Splits = statistics.Splits;
     object.Merges = statistics.Merges;
     this->RefinementTime += object.RefinementTime;

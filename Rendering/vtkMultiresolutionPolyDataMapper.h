@@ -156,6 +156,19 @@ public:
 
   ///@{
   /**
+   * BUDGET mode: seconds the fronts of this mapper may spend refining per
+   * render (0, the default: no limit). Splits and merges cost about the same
+   * each, so a front moves towards its budget by at most the triangles that
+   * fit in the limit at its measured rate, and reaches it over a few frames
+   * after a large change instead of in one long frame (the paper's
+   * frame-to-frame coherence). vtkTimeCriticalRenderer sets it.
+   */
+  void SetRefinementTimeLimit(double seconds);
+  vtkGetMacro(RefinementTimeLimit, double);
+  ///@}
+
+  ///@{
+  /**
    * Screen-space error threshold tau, pixels, finite and >= 0; default 1.
    * FIXED_ACCURACY: fronts are refined until no projected error exceeds it.
    * BUDGET: a floor, detail below it is not bought even when the budget
@@ -262,6 +275,7 @@ protected:
   bool ColorByResolution = false;
   bool ViewDependentRefinement = true;
   int RefinementMode = BUDGET;
+  double RefinementTimeLimit = 0.0;
   double PixelThreshold = 1.0;
   bool BackFaceSimplification = true;
   bool SilhouetteRefinement = true;

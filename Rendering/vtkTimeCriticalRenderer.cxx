@@ -114,7 +114,7 @@ struct vtkTimeCriticalRenderer::Internals
   std::vector<vtkIdType> Vertices, Splits, Merges;
   std::vector<double> RefinementTimes;
   std::vector<char> ViewDependent;
-  double LastRefinementTime = 0.0;
+  double RefinementEstimate = 0.0; // smoothed refinement time of the recent frames
 
   // Visible objects, compacted for the policies.
   std::vector<std::size_t> Visible;
@@ -441,6 +441,21 @@ void vtkTimeCriticalRenderer::SetPixelThreshold(double tau)
   if (this->PixelThreshold != tau)
   {
     this->PixelThreshold = tau;
+    this->Modified();
+  }
+}
+
+void vtkTimeCriticalRenderer::SetRefinementTimeLimit(double seconds)
+{
+  if (!(seconds >= 0.0) || std::isinf(seconds))
+  {
+    vtkErrorMacro("RefinementTimeLimit must be a finite number >= 0, not " << seconds
+                                                                         << "; ignored.");
+    return;
+  }
+  if (this->RefinementTimeLimit != seconds)
+  {
+    this->RefinementTimeLimit = seconds;
     this->Modified();
   }
 }
@@ -879,7 +894,13 @@ void vtkTimeCriticalRenderer::ChooseResolutions(bool still)
   timecritical::FrameCostModel::FrameLoad load = in.Load;
   load.DrawCalls += mapperCalls;
   const double fixed =
-    correction * (in.Model.FixedTime(load, in.TotalPixels) + fixedFronts) + in.LastRefinementTime;
+    correction * (in.Model.FixedTime(load, in.TotalPixels) + fixedFronts) + in.RefinementEstimate;
+  // Time-limited budget fronts: at most the limit per mapper this frame.
+  for (const auto& entry : in.Actors)
+  {
+    entry.Mapper->SetRefinementTimeLimit(
+      this->RefinementMode == BUDGET && !still ? this->RefinementTimeLimit : 0.0);
+  }
 
   timecritical::PolicyInput input;
   input.Count = m;
@@ -958,7 +979,9 @@ void vtkTimeCriticalRenderer::FinishFrame()
   {
     this->RefinementTime += entry.Mapper->GetRefinementTime();
   }
-  in.LastRefinementTime = this->RefinementTime;
+  // Smoothed, so that one frame of large changes does not starve the next
+  // frame's budget (which would swing the fronts back the other way).
+  in.RefinementEstimate = 0.5 * in.RefinementEstimate + 0.5 * this->RefinementTime;
   this->ObjectTrianglesDrawn = static_cast<vtkIdType>(objectTriangles);
   this->TrianglesDrawn = static_cast<vtkIdType>(objectTriangles + in.Load.OtherTriangles);
   timecritical::FrameCostModel::FrameLoad load = in.Load;
@@ -1092,6 +1115,7 @@ void vtkTimeCriticalRenderer::PrintSelf(ostream& os, vtkIndent indent)
      << this->SilhouetteFactor << ")\n";
   os << indent << "HighlightRefinement: " << this->HighlightRefinement << " (factor "
      << this->HighlightFactor << ")\n";
+  os << indent << "RefinementTimeLimit: " << this->RefinementTimeLimit << "\n";
   os << indent << "RefinementTime: " << this->RefinementTime << "\n";
   os << indent << "PredictedFrameTime: " << this->PredictedFrameTime << "\n";
   os << indent << "MeasuredFrameTime: " << this->MeasuredFrameTime << "\n";

@@ -280,6 +280,15 @@ public:
   vtkBooleanMacro(HighlightRefinement, bool);
   void SetHighlightFactor(double factor); ///< in (0, 1], default 0.5
   vtkGetMacro(HighlightFactor, double);
+  /**
+   * BUDGET mode: seconds per frame the fronts of one mapper may spend on
+   * refinement (default 0.01; 0: no limit). A front then moves towards the
+   * budget the policy gives it by what fits in the limit, so a large change
+   * of view or budget spreads over a few frames instead of stalling one.
+   * Still frames are never limited.
+   */
+  void SetRefinementTimeLimit(double seconds);
+  vtkGetMacro(RefinementTimeLimit, double);
   ///@}
 
   ///@{
@@ -324,6 +333,7 @@ protected:
   double SilhouetteFactor = 0.25;
   bool HighlightRefinement = true;
   double HighlightFactor = 0.5;
+  double RefinementTimeLimit = 0.01;
   double RefinementTime = 0.0;
 
   double PredictedFrameTime = 0.0;

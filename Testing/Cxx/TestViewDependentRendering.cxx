@@ -711,6 +711,68 @@ TEST(ViewDependentMapper, BudgetFollowsTheResolution)
 // only the index buffer, all in one draw call.
 namespace
 {
+TEST(ViewDependentMapper, TimeLimitedBudgetsMoveByBoundedStepsAndConverge)
+{
+  vtkPolyData* tree = SphereTree();
+  const vtkIdType triangles = tree->GetNumberOfPolys();
+  vtkNew<vtkMultiresolutionPolyDataMapper> mapper;
+  mapper->SetInputDataObject(tree);
+  mapper->UpdateObjects();
+  mapper->SetPixelThreshold(0.0);
+  mapper->BackFaceSimplificationOff();
+  Scene scene(mapper);
+  scene.LookAt(1.2, 0.8, 2.6);
+  // The front of the whole budget, reached at once without a limit (parts
+  // out of view stay coarse, so it is less than the whole mesh).
+  mapper->SetResolution(1.0);
+  scene.Render();
+  const vtkIdType unlimited = mapper->GetRenderedTriangles();
+  EXPECT_LE(unlimited, triangles);
+  mapper->SetResolution(0.0001); // the coarsest front
+  scene.Render();
+  const vtkIdType coarsest = mapper->GetRenderedTriangles();
+  ASSERT_LT(coarsest + 1000, unlimited);
+
+  // 10 us per render: the step is what fits at the rate measured so far
+  // (tens of thousands of splits per second), far less than the change.
+  mapper->SetRefinementTimeLimit(1e-5);
+  EXPECT_EQ(mapper->GetRefinementTimeLimit(), 1e-5);
+  mapper->SetResolution(1.0);
+  scene.Render();
+  vtkIdType previous = mapper->GetRenderedTriangles();
+  EXPECT_GT(previous, coarsest);
+  EXPECT_LT(previous - coarsest, (unlimited - coarsest) / 2);
+  // Then steps follow the measured rate, and the front reaches the same
+  // front in a bounded number of renders, never shrinking; a step too small
+  // for the next split's forced splits grows until it fits (a few renders
+  // without change at most).
+  int renders = 1;
+  int unchanged = 0;
+  for (; previous < unlimited && renders < 2000; ++renders)
+  {
+    scene.Render();
+    const vtkIdType count = mapper->GetRenderedTriangles();
+    ASSERT_GE(count, previous) << "render " << renders;
+    unchanged = count == previous ? unchanged + 1 : 0;
+    ASSERT_LT(unchanged, 12) << "render " << renders;
+    previous = count;
+  }
+  EXPECT_EQ(previous, unlimited);
+  EXPECT_GT(renders, 2);
+  // Without a limit the same change happens at once.
+  mapper->SetRefinementTimeLimit(0.0);
+  mapper->SetResolution(0.0001);
+  scene.Render();
+  EXPECT_EQ(mapper->GetRenderedTriangles(), coarsest);
+  // Bad limits are errors and ignored.
+  EventCounter errors(mapper, vtkCommand::ErrorEvent);
+  mapper->SetRefinementTimeLimit(-1.0);
+  mapper->SetRefinementTimeLimit(std::numeric_limits<double>::quiet_NaN());
+  EXPECT_EQ(errors.Count, 2);
+  EXPECT_NE(errors.Last.find("RefinementTimeLimit"), std::string::npos);
+  EXPECT_EQ(mapper->GetRefinementTimeLimit(), 0.0);
+}
+
 struct MixedComposite
 {
   MixedComposite()
@@ -1457,21 +1519,26 @@ TEST(ViewDependentRenderer, StatisticsAndCostAccounting)
   EXPECT_FALSE(renderer->GetObjectIsViewDependent(4));
   EXPECT_EQ(mapper->GetNumberOfDrawCalls(), 1);
 
-  // Budget mode: the last frame's refinement time is fixed cost (frame cost
-  // 2 ms, no draw-call or pixel cost, no correction with online calibration off).
+  // Budget mode: the refinement time, smoothed over frames (estimate = half
+  // the previous estimate + half the last frame's time), is fixed cost (frame
+  // cost 2 ms, no draw-call or pixel cost, no correction with online
+  // calibration off).
+  double estimate = renderer->GetFixedFrameTime() - 2e-3;
   double refinement = renderer->GetRefinementTime();
+  EXPECT_GT(refinement, 0.0);
   scene.Window->Render();
-  EXPECT_NEAR(renderer->GetFixedFrameTime(), 2e-3 + refinement, 1e-12);
+  EXPECT_NEAR(renderer->GetFixedFrameTime(), 2e-3 + 0.5 * estimate + 0.5 * refinement, 1e-12);
   EXPECT_EQ(renderer->GetObjectSplits(0) + renderer->GetObjectMerges(0), 0) << "same view";
 
   // Fixed accuracy: the front's last triangles are fixed cost as well.
   renderer->SetRefinementModeToFixedAccuracy();
   scene.Window->Render();
-  refinement = renderer->GetRefinementTime();
   const vtkIdType front = renderer->GetObjectTriangles(0);
+  estimate = renderer->GetFixedFrameTime() - 2e-3 - 1e-6 * static_cast<double>(front);
+  refinement = renderer->GetRefinementTime();
   scene.Window->Render();
   EXPECT_NEAR(renderer->GetFixedFrameTime(),
-    2e-3 + 1e-6 * static_cast<double>(front) + refinement, 1e-12);
+    2e-3 + 1e-6 * static_cast<double>(front) + 0.5 * estimate + 0.5 * refinement, 1e-12);
 }
 
 TEST(ViewDependentRenderer, FixedAccuracyIgnoresTheTargetBudgetFollowsIt)
@@ -1571,6 +1638,12 @@ TEST(ViewDependentRenderer, BadSettingsAreErrorsAndIgnored)
   }
   EXPECT_EQ(renderer->GetSilhouetteFactor(), 0.25);
   EXPECT_EQ(renderer->GetHighlightFactor(), 0.5);
+  for (double limit : { NaN, -1e-3, Inf })
+  {
+    renderer->SetRefinementTimeLimit(limit);
+    EXPECT_EQ(errors.Count, ++expected) << limit;
+  }
+  EXPECT_EQ(renderer->GetRefinementTimeLimit(), 0.01);
   renderer->SetPixelThreshold(0.0);
   renderer->SetSilhouetteFactor(1.0);
   EXPECT_EQ(renderer->GetPixelThreshold(), 0.0);
