@@ -17,6 +17,10 @@ struct TOMMesh;
  * points: 3 coordinates per TOM vertex, in TOM order. levels: one per TOM
  * vertex (level of the collapse that removed it), or null to derive levels
  * from the dependency depth. Throws std::invalid_argument on an invalid TOM.
+ * Linear time, one pass over the collapses; bound by cache misses on the
+ * scattered TOM order (igea after one Loop subdivision: ~0.35 s per million
+ * triangles on one core, validation included); work memory about 160 bytes
+ * per vertex and 50 per triangle.
  */
 TIMECRITICALFILTERSCORE_EXPORT MergeTree ComputeMergeTree(
   const TOMMesh& tom, const double* points, const uint16_t* levels);
