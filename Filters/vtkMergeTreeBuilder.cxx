@@ -12,11 +12,15 @@
 #include "vtkTimerLog.h"
 
 #include <exception>
+#include <limits>
 #include <string>
 
 vtkStandardNewMacro(vtkMergeTreeBuilder);
 
-vtkMergeTreeBuilder::vtkMergeTreeBuilder() = default;
+vtkMergeTreeBuilder::vtkMergeTreeBuilder()
+  : LevelCostRatio(timecritical::MergeTreeBuildOptions().LevelCostRatio)
+{
+}
 vtkMergeTreeBuilder::~vtkMergeTreeBuilder() = default;
 
 void vtkMergeTreeBuilder::SetFeatureAngle(double angle)
@@ -40,6 +44,15 @@ void vtkMergeTreeBuilder::SetMinimumTriangleQuality(double quality)
 {
   if (timecritical::SetClampedSetting(
         this, "MinimumTriangleQuality", quality, 0.0, 1.0, this->MinimumTriangleQuality))
+  {
+    this->Modified();
+  }
+}
+
+void vtkMergeTreeBuilder::SetLevelCostRatio(double ratio)
+{
+  if (timecritical::SetClampedSetting(this, "LevelCostRatio", ratio, 0.0,
+        std::numeric_limits<double>::max(), this->LevelCostRatio))
   {
     this->Modified();
   }
@@ -86,6 +99,7 @@ int vtkMergeTreeBuilder::RequestData(
   options.Collapse.FeatureAngle = this->FeatureAngle;
   options.Collapse.MaximumNormalDeviation = this->MaximumNormalDeviation;
   options.Collapse.MinimumTriangleQuality = this->MinimumTriangleQuality;
+  options.LevelCostRatio = this->LevelCostRatio;
   options.Collapse.Progress = timecritical::CoreProgress(this);
 
   timecritical::MergeTreeBuildResult result;
@@ -128,6 +142,7 @@ void vtkMergeTreeBuilder::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "FeatureAngle: " << this->FeatureAngle << "\n";
   os << indent << "MaximumNormalDeviation: " << this->MaximumNormalDeviation << "\n";
   os << indent << "MinimumTriangleQuality: " << this->MinimumTriangleQuality << "\n";
+  os << indent << "LevelCostRatio: " << this->LevelCostRatio << "\n";
   os << indent << "NumberOfDroppedCells: " << this->NumberOfDroppedCells << "\n";
   os << indent << "NumberOfMergedPoints: " << this->NumberOfMergedPoints << "\n";
   os << indent << "LevelCount: " << this->LevelCount << "\n";

@@ -419,6 +419,27 @@ TEST(vtkMergeTreeBuilder, SettingsRejectNaNAndClamp)
   EXPECT_EQ(builder->GetFeatureAngle(), 0.0);
 }
 
+TEST(vtkMergeTreeBuilder, LevelCostRatioTradesLevelsForAccuracy)
+{
+  vtkNew<vtkMergeTreeBuilder> builder;
+  MessageLog log(builder);
+  EXPECT_EQ(builder->GetLevelCostRatio(), 2.0);
+  builder->SetLevelCostRatio(std::numeric_limits<double>::quiet_NaN());
+  builder->SetLevelCostRatio(-1.0);
+  EXPECT_EQ(log.Errors.size(), 1u);
+  EXPECT_EQ(builder->GetLevelCostRatio(), 0.0); // clamped
+  // The paper's maximal levels (0) give a shallower tree than the capped default.
+  auto input = MakeSphere(40);
+  auto maximal = BuildTree(input, builder);
+  const int maximalLevels = builder->GetLevelCount();
+  builder->SetLevelCostRatio(2.0);
+  auto capped = BuildTree(input, builder);
+  EXPECT_GT(builder->GetLevelCount(), maximalLevels);
+  vtkNew<vtkMergeTreeFieldData> reader;
+  ASSERT_TRUE(reader->Read(maximal)) << reader->GetErrorMessage();
+  ASSERT_TRUE(reader->Read(capped)) << reader->GetErrorMessage();
+}
+
 TEST(vtkMergeTreeBuilder, SliverAvoidanceKeepsAValidTree)
 {
   auto input = MakeSphere(30);
