@@ -1058,6 +1058,9 @@ void vtkMultiresolutionPolyDataMapper::RefineObjects(vtkRenderer* ren, vtkActor*
   // the determinant for the rare non-uniform case).
   const double scale = std::cbrt(std::abs(act->GetMatrix()->Determinant()));
   view.ParallelScale = camera->GetParallelScale() / (scale > 0.0 ? scale : 1.0);
+  // Nothing nearer than the near plane is drawn: a node around the eye is
+  // projected from there instead of with an unbounded error.
+  view.NearDistance = camera->GetClippingRange()[0] / (scale > 0.0 ? scale : 1.0);
   // Frustum planes from the world-to-clip matrix the draw uses (cached by the
   // camera until it changes; vtkCamera::GetFrustumPlanes() would rebuild a
   // transform concatenation, allocating, at every call). vtkOpenGLCamera
