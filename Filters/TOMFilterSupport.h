@@ -1,9 +1,13 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Private helpers shared by the filters that build TOMs (vtkTOMBuilder,
 // vtkMergeTreeBuilder): one way to prepare their input and assemble their
-// output, so the two filters accept and carry data identically.
+// output, so the two filters accept and carry data identically; and by the
+// readers of their arrays (vtkTOMFieldData, vtkMergeTreeFieldData), so both
+// accept the same array types.
 #ifndef TOMFilterSupport_h
 #define TOMFilterSupport_h
+
+#include "TOMBuilder.h" // for TOMBuildOptions
 
 #include "vtkSmartPointer.h"
 #include "vtkType.h"
@@ -18,8 +22,6 @@ class vtkPolyData;
 
 namespace timecritical
 {
-struct TOMBuildResult;
-
 /// A filter's input surface, cleaned and triangulated, in the form the cores take.
 struct PreparedSurface
 {
@@ -54,6 +56,22 @@ SurfaceStatus PrepareSurface(vtkAlgorithm* filter, vtkPolyData* input, PreparedS
 std::function<bool(double)> CoreProgress(vtkAlgorithm* filter);
 
 /**
+ * Fills the collapse options of the cores from the settings of a builder
+ * filter (vtkTOMBuilder, vtkMergeTreeBuilder), with CoreProgress: one mapping,
+ * so that both filters simplify alike.
+ */
+template <typename Builder>
+void SetCollapseOptions(Builder* filter, TOMBuildOptions& options)
+{
+  options.PreserveBoundaries = filter->GetPreserveBoundaries();
+  options.PreserveFeatureEdges = filter->GetPreserveFeatureEdges();
+  options.FeatureAngle = filter->GetFeatureAngle();
+  options.MaximumNormalDeviation = filter->GetMaximumNormalDeviation();
+  options.MinimumTriangleQuality = filter->GetMinimumTriangleQuality();
+  options.Progress = CoreProgress(filter);
+}
+
+/**
  * Fills `output` with the points, point data, triangles and cell data of
  * `surface` in the TOM order of `result`, and the field data of `input`.
  * Warns on `filter` about triangles the core dropped and counts them in
@@ -69,6 +87,9 @@ void WriteOrderedSurface(vtkAlgorithm* filter, vtkPolyData* input, PreparedSurfa
  */
 bool SetClampedSetting(vtkObject* object, const char* name, double value, double minimum,
   double maximum, double& member);
+
+/// Whether a VTK data type (VTK_INT, ...) holds integers; index arrays must.
+bool IsIntegerType(int type);
 }
 
 #endif

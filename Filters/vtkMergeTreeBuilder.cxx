@@ -94,13 +94,8 @@ int vtkMergeTreeBuilder::RequestData(
   this->NumberOfMergedPoints = surface.NumberOfMergedPoints;
 
   timecritical::MergeTreeBuildOptions options;
-  options.Collapse.PreserveBoundaries = this->PreserveBoundaries;
-  options.Collapse.PreserveFeatureEdges = this->PreserveFeatureEdges;
-  options.Collapse.FeatureAngle = this->FeatureAngle;
-  options.Collapse.MaximumNormalDeviation = this->MaximumNormalDeviation;
-  options.Collapse.MinimumTriangleQuality = this->MinimumTriangleQuality;
+  timecritical::SetCollapseOptions(this, options.Collapse);
   options.LevelCostRatio = this->LevelCostRatio;
-  options.Collapse.Progress = timecritical::CoreProgress(this);
 
   timecritical::MergeTreeBuildResult result;
   try

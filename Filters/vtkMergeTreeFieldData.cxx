@@ -2,6 +2,7 @@
 #include "vtkMergeTreeFieldData.h"
 
 #include "MergeTree.h"
+#include "TOMFilterSupport.h"
 #include "TOMMesh.h"
 #include "vtkTOMFieldData.h"
 
@@ -48,28 +49,6 @@ const char* const FieldArrays[] = { "MergeTreeDependencyOffsets", "MergeTreeDepe
 // a normalized float vector is within a few ulps of 1.
 constexpr double AxisLengthTolerance = 1e-3;
 
-bool IsIntegerType(int type)
-{
-  switch (type)
-  {
-    case VTK_CHAR:
-    case VTK_SIGNED_CHAR:
-    case VTK_UNSIGNED_CHAR:
-    case VTK_SHORT:
-    case VTK_UNSIGNED_SHORT:
-    case VTK_INT:
-    case VTK_UNSIGNED_INT:
-    case VTK_LONG:
-    case VTK_UNSIGNED_LONG:
-    case VTK_LONG_LONG:
-    case VTK_UNSIGNED_LONG_LONG:
-    case VTK_ID_TYPE:
-      return true;
-    default:
-      return false;
-  }
-}
-
 enum class Kind
 {
   Integer,
@@ -99,7 +78,7 @@ std::string FindArray(vtkFieldData* fields, const char* where, const char* name,
     msg << name << " is a " << abstract->GetClassName() << "; it must be " << wanted << " array";
     return msg.str();
   }
-  const bool integer = IsIntegerType(array->GetDataType());
+  const bool integer = timecritical::IsIntegerType(array->GetDataType());
   const bool real = array->GetDataType() == VTK_FLOAT || array->GetDataType() == VTK_DOUBLE;
   if ((kind == Kind::Integer && !integer) || (kind == Kind::Real && !real))
   {

@@ -53,12 +53,7 @@ int vtkTOMBuilder::RequestData(
   this->NumberOfMergedPoints = surface.NumberOfMergedPoints;
 
   timecritical::TOMBuildOptions options;
-  options.PreserveBoundaries = this->PreserveBoundaries;
-  options.PreserveFeatureEdges = this->PreserveFeatureEdges;
-  options.FeatureAngle = this->FeatureAngle;
-  options.MaximumNormalDeviation = this->MaximumNormalDeviation;
-  options.MinimumTriangleQuality = this->MinimumTriangleQuality;
-  options.Progress = timecritical::CoreProgress(this);
+  timecritical::SetCollapseOptions(this, options);
 
   timecritical::TOMBuildResult result;
   try

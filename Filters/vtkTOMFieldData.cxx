@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkTOMFieldData.h"
 
+#include "TOMFilterSupport.h"
 #include "TOMMesh.h"
 #include "TOMValidator.h"
 
@@ -53,28 +54,6 @@ bool ToIndex(double value, uint32_t& out)
   out = static_cast<uint32_t>(value);
   return true;
 }
-
-bool IsIntegerArray(vtkDataArray* array)
-{
-  switch (array->GetDataType())
-  {
-    case VTK_CHAR:
-    case VTK_SIGNED_CHAR:
-    case VTK_UNSIGNED_CHAR:
-    case VTK_SHORT:
-    case VTK_UNSIGNED_SHORT:
-    case VTK_INT:
-    case VTK_UNSIGNED_INT:
-    case VTK_LONG:
-    case VTK_UNSIGNED_LONG:
-    case VTK_LONG_LONG:
-    case VTK_UNSIGNED_LONG_LONG:
-    case VTK_ID_TYPE:
-      return true;
-    default:
-      return false;
-  }
-}
 }
 
 bool vtkTOMFieldData::Read(vtkPolyData* data)
@@ -98,7 +77,8 @@ bool vtkTOMFieldData::Read(vtkPolyData* data)
     return fail("not a Totally Ordered Mesh: the point-data array TOMSubstitution or the field-data "
                 "array TOMCounts is missing (build one with vtkTOMBuilder)");
   }
-  if (substitution->GetNumberOfComponents() != 1 || !IsIntegerArray(substitution))
+  if (substitution->GetNumberOfComponents() != 1 ||
+    !timecritical::IsIntegerType(substitution->GetDataType()))
   {
     return fail("TOMSubstitution must be a single-component integer array");
   }
