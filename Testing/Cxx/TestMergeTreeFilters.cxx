@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Tests of vtkMergeTreeBuilder, vtkMergeTreeFieldData and vtkExtractViewDependentMesh.
+#include "FilterTestSupport.h"
 #include "MergeTree.h"
 #include "TOMMesh.h"
 #include "vtkExtractViewDependentMesh.h"
@@ -13,26 +14,18 @@
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
 #include "vtkCommand.h"
-#include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
 #include "vtkIntArray.h"
 #include "vtkNew.h"
 #include "vtkOBJReader.h"
-#include "vtkPlaneSource.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
-#include "vtkPolyDataNormals.h"
 #include "vtkSmartPointer.h"
-#include "vtkSphereSource.h"
 #include "vtkStringArray.h"
-#include "vtkStripper.h"
-#include "vtkTriangleFilter.h"
 #include "vtkTypeUInt16Array.h"
 #include "vtkTypeUInt32Array.h"
-#include "vtkXMLPolyDataReader.h"
-#include "vtkXMLPolyDataWriter.h"
 
 #include <gtest/gtest.h>
 
@@ -50,80 +43,16 @@
 
 namespace
 {
-// Collects the error and warning messages an object emits.
-class MessageLog
-{
-public:
-  explicit MessageLog(vtkObject* object)
-  {
-    this->Callback->SetClientData(this);
-    this->Callback->SetCallback([](vtkObject*, unsigned long event, void* client, void* data) {
-      auto* self = static_cast<MessageLog*>(client);
-      (event == vtkCommand::ErrorEvent ? self->Errors : self->Warnings)
-        .emplace_back(data ? static_cast<const char*>(data) : "");
-    });
-    object->AddObserver(vtkCommand::ErrorEvent, this->Callback);
-    object->AddObserver(vtkCommand::WarningEvent, this->Callback);
-  }
-  bool ErrorContains(const std::string& text) const
-  {
-    for (const auto& e : this->Errors)
-    {
-      if (e.find(text) != std::string::npos)
-      {
-        return true;
-      }
-    }
-    return false;
-  }
-  std::string AllErrors() const
-  {
-    std::string all;
-    for (const auto& e : this->Errors)
-    {
-      all += e;
-    }
-    return all;
-  }
-  std::vector<std::string> Errors;
-  std::vector<std::string> Warnings;
-
-private:
-  vtkNew<vtkCallbackCommand> Callback;
-};
-
-// A closed sphere with normals (point data) and its input cell ids (cell data).
-vtkSmartPointer<vtkPolyData> MakeSphere(int resolution = 40)
-{
-  vtkNew<vtkSphereSource> sphere;
-  sphere->SetThetaResolution(resolution);
-  sphere->SetPhiResolution(resolution);
-  vtkNew<vtkPolyDataNormals> normals;
-  normals->SetInputConnection(sphere->GetOutputPort());
-  normals->SplittingOff();
-  normals->Update();
-  vtkSmartPointer<vtkPolyData> out = normals->GetOutput();
-  vtkNew<vtkDoubleArray> cellIds;
-  cellIds->SetName("InputCellId");
-  for (vtkIdType c = 0; c < out->GetNumberOfCells(); ++c)
-  {
-    cellIds->InsertNextValue(static_cast<double>(c));
-  }
-  out->GetCellData()->AddArray(cellIds);
-  return out;
-}
+namespace tt = timecritical::testing;
+using tt::LinesOnly;
+using tt::MakeSphere;
+using tt::MessageLog;
+using tt::PointKey;
+using Key = tt::PointKeyType;
 
 vtkSmartPointer<vtkPolyData> BuildTree(vtkPolyData* input, vtkMergeTreeBuilder* builder = nullptr)
 {
-  vtkSmartPointer<vtkMergeTreeBuilder> local = builder;
-  if (!local)
-  {
-    local = vtkSmartPointer<vtkMergeTreeBuilder>::New();
-  }
-  local->SetInputData(input);
-  local->Update();
-  vtkSmartPointer<vtkPolyData> out = local->GetOutput();
-  return out;
+  return tt::RunFilter(input, builder);
 }
 
 // One merge tree of a sphere shared by the tests that only read it.
@@ -138,27 +67,6 @@ vtkSmartPointer<vtkPolyData> Copy(vtkPolyData* data)
   auto copy = vtkSmartPointer<vtkPolyData>::New();
   copy->DeepCopy(data);
   return copy;
-}
-
-using Key = std::array<double, 3>;
-Key PointKey(vtkPolyData* data, vtkIdType id)
-{
-  Key k;
-  data->GetPoint(id, k.data());
-  return k;
-}
-
-vtkSmartPointer<vtkPolyData> LinesOnly()
-{
-  auto lines = vtkSmartPointer<vtkPolyData>::New();
-  vtkNew<vtkPoints> points;
-  points->InsertNextPoint(0, 0, 0);
-  points->InsertNextPoint(1, 0, 0);
-  lines->SetPoints(points);
-  vtkNew<vtkCellArray> cells;
-  cells->InsertNextCell({ 0, 1 });
-  lines->SetLines(cells);
-  return lines;
 }
 }
 
@@ -201,44 +109,7 @@ TEST(vtkMergeTreeBuilder, SphereGivesValidTOMAndMergeTree)
 
 TEST(vtkMergeTreeBuilder, PointAndCellDataTravelWithTheirPointsAndTriangles)
 {
-  auto input = MakeSphere();
-  vtkPolyData* out = SphereTree();
-  std::map<Key, vtkIdType> inputIds;
-  for (vtkIdType i = 0; i < input->GetNumberOfPoints(); ++i)
-  {
-    inputIds[PointKey(input, i)] = i;
-  }
-  vtkDataArray* inNormals = input->GetPointData()->GetNormals();
-  vtkDataArray* outNormals = out->GetPointData()->GetNormals();
-  ASSERT_NE(outNormals, nullptr);
-  for (vtkIdType i = 0; i < out->GetNumberOfPoints(); ++i)
-  {
-    auto found = inputIds.find(PointKey(out, i));
-    ASSERT_NE(found, inputIds.end());
-    for (int c = 0; c < 3; ++c)
-    {
-      ASSERT_EQ(outNormals->GetComponent(i, c), inNormals->GetComponent(found->second, c));
-    }
-  }
-  vtkDataArray* cellIds = out->GetCellData()->GetArray("InputCellId");
-  ASSERT_NE(cellIds, nullptr);
-  std::vector<bool> seen(input->GetNumberOfCells(), false);
-  for (vtkIdType c = 0; c < out->GetNumberOfCells(); ++c)
-  {
-    const auto inCell = static_cast<vtkIdType>(cellIds->GetTuple1(c));
-    ASSERT_FALSE(seen[inCell]);
-    seen[inCell] = true;
-    vtkIdType nOut, nIn;
-    const vtkIdType* outIds;
-    const vtkIdType* inIds;
-    out->GetCellPoints(c, nOut, outIds);
-    input->GetCellPoints(inCell, nIn, inIds);
-    ASSERT_EQ(nOut, 3);
-    for (int k = 0; k < 3; ++k)
-    {
-      ASSERT_EQ(PointKey(out, outIds[k]), PointKey(input, inIds[k])) << "winding must be kept";
-    }
-  }
+  tt::ExpectDataTravelsWithPointsAndTriangles(MakeSphere(), SphereTree());
 }
 
 TEST(vtkMergeTreeBuilder, EmptyInputGivesEmptyOutputQuietly)
@@ -311,19 +182,12 @@ TEST(vtkMergeTreeBuilder, OutOfRangePointIdIsAnError)
 
 TEST(vtkMergeTreeBuilder, QuadsAndStripsAreTriangulated)
 {
-  vtkNew<vtkPlaneSource> plane;
-  plane->SetResolution(10, 10);
-  plane->Update();
-  auto quads = BuildTree(plane->GetOutput());
+  auto quads = BuildTree(tt::PlaneQuads());
   EXPECT_EQ(quads->GetNumberOfPolys(), 200);
 
-  vtkNew<vtkTriangleFilter> triangles;
-  triangles->SetInputConnection(plane->GetOutputPort());
-  vtkNew<vtkStripper> stripper;
-  stripper->SetInputConnection(triangles->GetOutputPort());
-  stripper->Update();
-  ASSERT_GT(stripper->GetOutput()->GetNumberOfStrips(), 0);
-  auto strips = BuildTree(stripper->GetOutput());
+  auto stripped = tt::PlaneStrips();
+  ASSERT_GT(stripped->GetNumberOfStrips(), 0);
+  auto strips = BuildTree(stripped);
   EXPECT_EQ(strips->GetNumberOfPolys(), 200);
   EXPECT_EQ(strips->GetNumberOfStrips(), 0);
   vtkNew<vtkMergeTreeFieldData> reader;
@@ -332,26 +196,9 @@ TEST(vtkMergeTreeBuilder, QuadsAndStripsAreTriangulated)
 
 TEST(vtkMergeTreeBuilder, DuplicatePointsAreMergedAndDegenerateCellsDropped)
 {
-  vtkNew<vtkPolyData> data;
-  vtkNew<vtkPoints> points;
-  points->InsertNextPoint(0, 0, 0); // 0
-  points->InsertNextPoint(1, 0, 0); // 1
-  points->InsertNextPoint(0, 1, 0); // 2
-  points->InsertNextPoint(1, 0, 0); // 3 = 1
-  points->InsertNextPoint(0, 1, 0); // 4 = 2
-  points->InsertNextPoint(1, 1, 0); // 5
-  data->SetPoints(points);
-  vtkNew<vtkCellArray> polys;
-  polys->InsertNextCell({ 0, 1, 2 });
-  polys->InsertNextCell({ 3, 5, 4 });
-  polys->InsertNextCell({ 1, 3, 2 }); // degenerate after merging
-  data->SetPolys(polys);
-  vtkNew<vtkCellArray> lines;
-  lines->InsertNextCell({ 0, 5 });
-  data->SetLines(lines);
   vtkNew<vtkMergeTreeBuilder> builder;
   MessageLog log(builder);
-  auto out = BuildTree(data, builder);
+  auto out = BuildTree(tt::DuplicatePointsAndDegenerateCells(), builder);
   EXPECT_TRUE(log.Errors.empty()) << log.AllErrors();
   EXPECT_GE(log.Warnings.size(), 2u);
   EXPECT_EQ(out->GetNumberOfPoints(), 4);
@@ -384,15 +231,7 @@ TEST(vtkMergeTreeBuilder, ProgressAndAbort)
   }
 
   vtkNew<vtkMergeTreeBuilder> aborted;
-  vtkNew<vtkCallbackCommand> abort;
-  abort->SetCallback([](vtkObject* caller, unsigned long, void*, void*) {
-    auto* algorithm = static_cast<vtkAlgorithm*>(caller);
-    if (algorithm->GetProgress() > 0.2)
-    {
-      algorithm->SetAbortExecute(1);
-    }
-  });
-  aborted->AddObserver(vtkCommand::ProgressEvent, abort);
+  tt::AbortPastOneFifth(aborted);
   auto empty = BuildTree(input, aborted);
   EXPECT_EQ(empty->GetNumberOfPoints(), 0);
   EXPECT_EQ(empty->GetNumberOfCells(), 0);
@@ -455,17 +294,8 @@ TEST(vtkMergeTreeBuilder, SavedAsBinaryVTPAndReadBackLosesNothing)
 {
   vtkPolyData* tree = SphereTree();
   const std::string path = std::string(TIMECRITICAL_TEST_OUTPUT_DIR) + "/sphere-merge-tree.vtp";
-  vtkNew<vtkXMLPolyDataWriter> writer;
-  writer->SetFileName(path.c_str());
-  writer->SetInputData(tree);
-  // Inline binary: Debian 12's VTK 9.2 cannot read back appended-mode files
-  // with its patched expat (a platform bug, see README).
-  writer->SetDataModeToBinary();
-  ASSERT_EQ(writer->Write(), 1);
-  vtkNew<vtkXMLPolyDataReader> reader;
-  reader->SetFileName(path.c_str());
-  reader->Update();
-  vtkPolyData* back = reader->GetOutput();
+  vtkSmartPointer<vtkPolyData> back;
+  ASSERT_NO_FATAL_FAILURE(tt::WriteAndReadBack(tree, path, back));
   vtkNew<vtkMergeTreeFieldData> before;
   vtkNew<vtkMergeTreeFieldData> after;
   ASSERT_TRUE(before->Read(tree)) << before->GetErrorMessage();

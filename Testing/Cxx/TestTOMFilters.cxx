@@ -1,117 +1,41 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Tests of vtkTOMBuilder, vtkExtractTOMResolution and vtkTOMFieldData.
+#include "FilterTestSupport.h"
 #include "TOMMesh.h"
 #include "vtkExtractTOMResolution.h"
 #include "vtkTOMBuilder.h"
 #include "vtkTOMFieldData.h"
 
-#include "vtkCallbackCommand.h"
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
-#include "vtkCommand.h"
-#include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
 #include "vtkNew.h"
 #include "vtkOBJReader.h"
-#include "vtkPlaneSource.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
-#include "vtkPolyDataNormals.h"
 #include "vtkSmartPointer.h"
-#include "vtkSphereSource.h"
-#include "vtkStripper.h"
-#include "vtkTriangleFilter.h"
 #include "vtkTypeUInt32Array.h"
-#include "vtkXMLPolyDataReader.h"
-#include "vtkXMLPolyDataWriter.h"
 
 #include <gtest/gtest.h>
 
-#include <array>
 #include <cmath>
 #include <fstream>
 #include <limits>
-#include <map>
 #include <string>
 #include <vector>
 
 namespace
 {
-// Collects the error and warning messages an algorithm emits.
-class MessageLog
-{
-public:
-  explicit MessageLog(vtkObject* object)
-  {
-    this->Callback->SetClientData(this);
-    this->Callback->SetCallback([](vtkObject*, unsigned long event, void* client, void* data) {
-      auto* self = static_cast<MessageLog*>(client);
-      const std::string text = data ? static_cast<const char*>(data) : "";
-      (event == vtkCommand::ErrorEvent ? self->Errors : self->Warnings).push_back(text);
-    });
-    object->AddObserver(vtkCommand::ErrorEvent, this->Callback);
-    object->AddObserver(vtkCommand::WarningEvent, this->Callback);
-  }
-  bool ErrorContains(const std::string& text) const
-  {
-    for (const auto& e : this->Errors)
-    {
-      if (e.find(text) != std::string::npos)
-      {
-        return true;
-      }
-    }
-    return false;
-  }
-  std::vector<std::string> Errors;
-  std::vector<std::string> Warnings;
-
-private:
-  vtkNew<vtkCallbackCommand> Callback;
-};
-
-vtkSmartPointer<vtkPolyData> MakeSphere(int resolution = 40)
-{
-  vtkNew<vtkSphereSource> sphere;
-  sphere->SetThetaResolution(resolution);
-  sphere->SetPhiResolution(resolution);
-  vtkNew<vtkPolyDataNormals> normals;
-  normals->SetInputConnection(sphere->GetOutputPort());
-  normals->SplittingOff();
-  normals->Update();
-  vtkSmartPointer<vtkPolyData> out = normals->GetOutput();
-  // Cell data: the input cell id, to follow triangles through the reordering.
-  vtkNew<vtkDoubleArray> cellIds;
-  cellIds->SetName("InputCellId");
-  for (vtkIdType c = 0; c < out->GetNumberOfCells(); ++c)
-  {
-    cellIds->InsertNextValue(static_cast<double>(c));
-  }
-  out->GetCellData()->AddArray(cellIds);
-  return out;
-}
+namespace tt = timecritical::testing;
+using tt::MakeSphere;
+using tt::MessageLog;
+using tt::PointKey;
 
 vtkSmartPointer<vtkPolyData> Build(vtkPolyData* input, vtkTOMBuilder* builder = nullptr)
 {
-  vtkSmartPointer<vtkTOMBuilder> local = builder;
-  if (!local)
-  {
-    local = vtkSmartPointer<vtkTOMBuilder>::New();
-  }
-  local->SetInputData(input);
-  local->Update();
-  vtkSmartPointer<vtkPolyData> out = local->GetOutput();
-  return out;
-}
-
-using Key = std::array<double, 3>;
-Key PointKey(vtkPolyData* data, vtkIdType id)
-{
-  Key k;
-  data->GetPoint(id, k.data());
-  return k;
+  return tt::RunFilter(input, builder);
 }
 
 vtkSmartPointer<vtkPolyData> Triangle()
@@ -162,45 +86,7 @@ TEST(vtkTOMBuilder, PointAndCellDataTravelWithTheirPointsAndTriangles)
 {
   auto input = MakeSphere();
   auto tom = Build(input);
-  ASSERT_EQ(tom->GetNumberOfPoints(), input->GetNumberOfPoints());
-  std::map<Key, vtkIdType> inputIds;
-  for (vtkIdType i = 0; i < input->GetNumberOfPoints(); ++i)
-  {
-    inputIds[PointKey(input, i)] = i;
-  }
-  vtkDataArray* inNormals = input->GetPointData()->GetNormals();
-  vtkDataArray* outNormals = tom->GetPointData()->GetNormals();
-  ASSERT_NE(outNormals, nullptr);
-  for (vtkIdType i = 0; i < tom->GetNumberOfPoints(); ++i)
-  {
-    auto found = inputIds.find(PointKey(tom, i));
-    ASSERT_NE(found, inputIds.end());
-    for (int c = 0; c < 3; ++c)
-    {
-      ASSERT_EQ(outNormals->GetComponent(i, c), inNormals->GetComponent(found->second, c));
-    }
-  }
-  // Each output triangle carries the id of the input triangle with the same corners.
-  vtkDataArray* cellIds = tom->GetCellData()->GetArray("InputCellId");
-  ASSERT_NE(cellIds, nullptr);
-  std::vector<bool> seen(input->GetNumberOfCells(), false);
-  for (vtkIdType c = 0; c < tom->GetNumberOfCells(); ++c)
-  {
-    const auto inCell = static_cast<vtkIdType>(cellIds->GetTuple1(c));
-    ASSERT_FALSE(seen[inCell]);
-    seen[inCell] = true;
-    vtkIdType nOut, nIn;
-    const vtkIdType* outIds;
-    const vtkIdType* inIds;
-    tom->GetCellPoints(c, nOut, outIds);
-    input->GetCellPoints(inCell, nIn, inIds);
-    ASSERT_EQ(nOut, 3);
-    ASSERT_EQ(nIn, 3);
-    for (int k = 0; k < 3; ++k)
-    {
-      ASSERT_EQ(PointKey(tom, outIds[k]), PointKey(input, inIds[k])) << "winding must be kept";
-    }
-  }
+  tt::ExpectDataTravelsWithPointsAndTriangles(input, tom);
 }
 
 TEST(vtkTOMBuilder, EmptyInputIsAnError)
@@ -215,17 +101,9 @@ TEST(vtkTOMBuilder, EmptyInputIsAnError)
 
 TEST(vtkTOMBuilder, LinesOnlyIsAnError)
 {
-  vtkNew<vtkPolyData> lines;
-  vtkNew<vtkPoints> points;
-  points->InsertNextPoint(0, 0, 0);
-  points->InsertNextPoint(1, 0, 0);
-  lines->SetPoints(points);
-  vtkNew<vtkCellArray> cells;
-  cells->InsertNextCell({ 0, 1 });
-  lines->SetLines(cells);
   vtkNew<vtkTOMBuilder> builder;
   MessageLog log(builder);
-  auto out = Build(lines, builder);
+  auto out = Build(tt::LinesOnly(), builder);
   EXPECT_TRUE(log.ErrorContains("no surface cells"));
   EXPECT_EQ(out->GetNumberOfCells(), 0);
 }
@@ -243,19 +121,12 @@ TEST(vtkTOMBuilder, NaNCoordinateIsAnError)
 
 TEST(vtkTOMBuilder, QuadsAndStripsAreTriangulated)
 {
-  vtkNew<vtkPlaneSource> plane;
-  plane->SetResolution(10, 10);
-  plane->Update();
-  auto quads = Build(plane->GetOutput());
+  auto quads = Build(tt::PlaneQuads());
   EXPECT_EQ(quads->GetNumberOfPolys(), 200);
 
-  vtkNew<vtkTriangleFilter> triangles;
-  triangles->SetInputConnection(plane->GetOutputPort());
-  vtkNew<vtkStripper> stripper;
-  stripper->SetInputConnection(triangles->GetOutputPort());
-  stripper->Update();
-  ASSERT_GT(stripper->GetOutput()->GetNumberOfStrips(), 0);
-  auto strips = Build(stripper->GetOutput());
+  auto stripped = tt::PlaneStrips();
+  ASSERT_GT(stripped->GetNumberOfStrips(), 0);
+  auto strips = Build(stripped);
   EXPECT_EQ(strips->GetNumberOfPolys(), 200);
   EXPECT_EQ(strips->GetNumberOfStrips(), 0);
   vtkNew<vtkTOMFieldData> reader;
@@ -264,28 +135,9 @@ TEST(vtkTOMBuilder, QuadsAndStripsAreTriangulated)
 
 TEST(vtkTOMBuilder, DuplicatePointsAreMergedAndDegenerateCellsDropped)
 {
-  // Two triangles sharing an edge through duplicated points, plus a triangle
-  // that collapses to a line once the duplicates are merged, plus a line cell.
-  vtkNew<vtkPolyData> data;
-  vtkNew<vtkPoints> points;
-  points->InsertNextPoint(0, 0, 0); // 0
-  points->InsertNextPoint(1, 0, 0); // 1
-  points->InsertNextPoint(0, 1, 0); // 2
-  points->InsertNextPoint(1, 0, 0); // 3 = 1
-  points->InsertNextPoint(0, 1, 0); // 4 = 2
-  points->InsertNextPoint(1, 1, 0); // 5
-  data->SetPoints(points);
-  vtkNew<vtkCellArray> polys;
-  polys->InsertNextCell({ 0, 1, 2 });
-  polys->InsertNextCell({ 3, 5, 4 });
-  polys->InsertNextCell({ 1, 3, 2 }); // degenerate after merging
-  data->SetPolys(polys);
-  vtkNew<vtkCellArray> lines;
-  lines->InsertNextCell({ 0, 5 });
-  data->SetLines(lines);
   vtkNew<vtkTOMBuilder> builder;
   MessageLog log(builder);
-  auto tom = Build(data, builder);
+  auto tom = Build(tt::DuplicatePointsAndDegenerateCells(), builder);
   EXPECT_TRUE(log.Errors.empty());
   EXPECT_GE(log.Warnings.size(), 2u);
   EXPECT_EQ(tom->GetNumberOfPoints(), 4);
@@ -329,15 +181,7 @@ TEST(vtkTOMBuilder, AbortLeavesEmptyOutput)
 {
   auto input = MakeSphere(60);
   vtkNew<vtkTOMBuilder> builder;
-  vtkNew<vtkCallbackCommand> abort;
-  abort->SetCallback([](vtkObject* caller, unsigned long, void*, void*) {
-    auto* algorithm = static_cast<vtkTOMBuilder*>(caller);
-    if (algorithm->GetProgress() > 0.2)
-    {
-      algorithm->SetAbortExecute(1);
-    }
-  });
-  builder->AddObserver(vtkCommand::ProgressEvent, abort);
+  tt::AbortPastOneFifth(builder);
   auto out = Build(input, builder);
   EXPECT_EQ(out->GetNumberOfPoints(), 0);
   EXPECT_EQ(out->GetNumberOfCells(), 0);
@@ -347,17 +191,8 @@ TEST(vtkTOMBuilder, SavedAndReadBackLosesNothing)
 {
   auto tom = Build(MakeSphere());
   const std::string path = std::string(TIMECRITICAL_TEST_OUTPUT_DIR) + "/sphere-tom.vtp";
-  vtkNew<vtkXMLPolyDataWriter> writer;
-  writer->SetFileName(path.c_str());
-  writer->SetInputData(tom);
-  // Inline binary: Debian 12's VTK 9.2 cannot read back appended-mode files
-  // with its patched expat (a platform bug, see README).
-  writer->SetDataModeToBinary();
-  ASSERT_EQ(writer->Write(), 1);
-  vtkNew<vtkXMLPolyDataReader> reader;
-  reader->SetFileName(path.c_str());
-  reader->Update();
-  vtkPolyData* back = reader->GetOutput();
+  vtkSmartPointer<vtkPolyData> back;
+  ASSERT_NO_FATAL_FAILURE(tt::WriteAndReadBack(tom, path, back));
   vtkNew<vtkTOMFieldData> before;
   vtkNew<vtkTOMFieldData> after;
   ASSERT_TRUE(before->Read(tom));
