@@ -8,6 +8,7 @@
 // differing by more than 0.05 fails; at most 0.1% may fail, RMS below 0.005.
 #include "TOMMesh.h"
 #include "TOMTraversal.h"
+#include "RenderTestSupport.h"
 #include "TestImageCompare.h"
 #include "vtkExtractTOMResolution.h"
 #include "vtkMultiresolutionPolyDataMapper.h"
@@ -18,41 +19,33 @@
 #include "AllocationCounter.h"
 
 #include "vtkActor.h"
-#include "vtkCallbackCommand.h"
 #include "vtkCamera.h"
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
 #include "vtkCellPicker.h"
 #include "vtkCompositeDataIterator.h"
-#include "vtkFloatArray.h"
-#include "vtkIntArray.h"
 #include "vtkLookupTable.h"
 #include "vtkMath.h"
 #include "vtkMultiBlockDataSet.h"
 #include "vtkNew.h"
 #include "vtkOpenGLPolyDataMapper.h"
 #include "vtkOpenGLVertexBufferObject.h"
-#include "vtkPNGWriter.h"
 #include "vtkPartitionedDataSet.h"
 #include "vtkPartitionedDataSetCollection.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkPolyDataMapper.h"
-#include "vtkPolyDataNormals.h"
 #include "vtkPropPicker.h"
 #include "vtkProperty.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
 #include "vtkSmartPointer.h"
 #include "vtkSphereSource.h"
-#include "vtkUnsignedCharArray.h"
-#include "vtkWindowToImageFilter.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <cstdlib>
 #include <fstream>
 #include <limits>
 #include <set>
@@ -66,28 +59,9 @@ const tt::ImageTolerance Tolerance{ 0.05, 0.001, 0.005 };
 constexpr double PixelThreshold = 0.05;
 constexpr int ImageSize = 300;
 
-// Xvfb resets when its last client disconnects, and a window opened during
-// the reset fails ("bad X server connection"): one window stays open for the
-// whole run, as each test opens and closes its own.
-class KeepDisplayOpen : public ::testing::Environment
-{
-public:
-  void SetUp() override
-  {
-    this->Window = vtkSmartPointer<vtkRenderWindow>::New();
-    this->Window->SetOffScreenRendering(1);
-    this->Window->SetSize(1, 1);
-    vtkNew<vtkRenderer> renderer;
-    this->Window->AddRenderer(renderer);
-    this->Window->Render();
-  }
-  void TearDown() override { this->Window = nullptr; }
-
-private:
-  vtkSmartPointer<vtkRenderWindow> Window;
-};
+// Xvfb resets when a window closes; see tt::KeepDisplayOpen.
 ::testing::Environment* const KeepDisplay =
-  ::testing::AddGlobalTestEnvironment(new KeepDisplayOpen);
+  ::testing::AddGlobalTestEnvironment(new tt::KeepDisplayOpen);
 
 std::string OutputPath(const std::string& name)
 {
@@ -97,55 +71,6 @@ std::string OutputPath(const std::string& name)
 std::string BaselinePath(const std::string& name)
 {
   return std::string(TIMECRITICAL_BASELINE_DIR) + "/MultiresolutionMapper_" + name + ".png";
-}
-
-bool UpdatingBaselines()
-{
-  const char* update = std::getenv("TIMECRITICAL_UPDATE_BASELINES");
-  return update && std::string(update) == "1";
-}
-
-// A deterministic bumpy sphere with point normals, a point array "Height"
-// (z) and a cell array "Patch" (a few distinct values), so that every
-// resolution shows and both kinds of scalars can be tested.
-vtkSmartPointer<vtkPolyData> MakeSurface(
-  double radius, int theta, int phi, double cx, double cy, double cz, double frequency)
-{
-  vtkNew<vtkSphereSource> sphere;
-  sphere->SetRadius(radius);
-  sphere->SetThetaResolution(theta);
-  sphere->SetPhiResolution(phi);
-  sphere->Update();
-  auto data = vtkSmartPointer<vtkPolyData>::New();
-  data->DeepCopy(sphere->GetOutput());
-  data->GetPointData()->Initialize();
-  vtkPoints* points = data->GetPoints();
-  vtkNew<vtkFloatArray> height;
-  height->SetName("Height");
-  for (vtkIdType i = 0; i < points->GetNumberOfPoints(); ++i)
-  {
-    double p[3];
-    points->GetPoint(i, p);
-    const double bump = 1.0 +
-      0.08 * std::sin(frequency * p[0] / radius) * std::sin(7.0 * p[1] / radius) *
-        std::cos(5.0 * p[2] / radius);
-    points->SetPoint(i, cx + p[0] * bump, cy + p[1] * bump, cz + p[2] * bump);
-    height->InsertNextValue(static_cast<float>(p[2] / radius));
-  }
-  data->GetPointData()->AddArray(height);
-  vtkNew<vtkIntArray> patch;
-  patch->SetName("Patch");
-  for (vtkIdType c = 0; c < data->GetNumberOfCells(); ++c)
-  {
-    patch->InsertNextValue(static_cast<int>((c * 7) % 5));
-  }
-  data->GetCellData()->AddArray(patch);
-  vtkNew<vtkPolyDataNormals> normals;
-  normals->SetInputData(data);
-  normals->SplittingOff();
-  normals->Update();
-  vtkSmartPointer<vtkPolyData> out = normals->GetOutput();
-  return out;
 }
 
 vtkSmartPointer<vtkPolyData> BuildTOM(vtkPolyData* surface)
@@ -161,22 +86,10 @@ vtkSmartPointer<vtkPolyData> BuildTOM(vtkPolyData* surface)
 vtkSmartPointer<vtkPolyData> MakeTOM(double radius, int theta, int phi, double cx = 0,
   double cy = 0, double cz = 0, double frequency = 9.0)
 {
-  return BuildTOM(MakeSurface(radius, theta, phi, cx, cy, cz, frequency));
+  return BuildTOM(tt::MakeBumpySurface(radius, theta, phi, cx, cy, cz, frequency));
 }
 
-// Counts error or warning events of an object.
-struct EventCounter
-{
-  explicit EventCounter(vtkObject* object, unsigned long event)
-  {
-    this->Command->SetClientData(this);
-    this->Command->SetCallback([](vtkObject*, unsigned long, void* self, void*)
-      { ++static_cast<EventCounter*>(self)->Count; });
-    object->AddObserver(event, this->Command);
-  }
-  int Count = 0;
-  vtkNew<vtkCallbackCommand> Command;
-};
+using tt::EventCounter;
 
 // One actor in an offscreen window with a fixed camera.
 struct Scene
@@ -209,28 +122,10 @@ struct Scene
   void Save(const std::string& path)
   {
     this->Render();
-    vtkNew<vtkWindowToImageFilter> grab;
-    grab->SetInput(this->Window);
-    grab->ReadFrontBufferOff();
-    vtkNew<vtkPNGWriter> writer;
-    writer->SetInputConnection(grab->GetOutputPort());
-    writer->SetFileName(path.c_str());
-    writer->Write();
+    tt::WriteWindowPNG(this->Window, path, true);
   }
   // Pixels that are not background in the last render.
-  int CountForeground()
-  {
-    vtkNew<vtkUnsignedCharArray> pixels;
-    const int* size = this->Window->GetSize();
-    this->Window->GetPixelData(0, 0, size[0] - 1, size[1] - 1, 0, pixels);
-    int count = 0;
-    for (vtkIdType i = 0; i < pixels->GetNumberOfTuples(); ++i)
-    {
-      const unsigned char* p = pixels->GetPointer(3 * i);
-      count += std::abs(p[0] - 26) + std::abs(p[1] - 26) + std::abs(p[2] - 38) > 6;
-    }
-    return count;
-  }
+  int CountForeground() { return tt::CountForegroundPixels(this->Window); }
   vtkNew<vtkActor> Actor;
   vtkNew<vtkRenderer> Renderer;
   vtkNew<vtkRenderWindow> Window;
@@ -940,7 +835,7 @@ std::string RenderGrid(const double* resolutions, bool map, const std::string& n
 void CheckBaseline(const std::string& image, const std::string& name)
 {
   const std::string baseline = BaselinePath(name);
-  if (UpdatingBaselines())
+  if (tt::UpdatingBaselines())
   {
     std::ifstream src(image, std::ios::binary);
     std::ofstream dst(baseline, std::ios::binary);

@@ -10,6 +10,7 @@
 // differences of other Mesa versions along silhouettes. A wrong resolution
 // changes thousands of silhouette and shading pixels: the test below checks
 // that neighbouring resolutions (50% against 25%) do fail these thresholds.
+#include "RenderTestSupport.h"
 #include "TestImageCompare.h"
 #include "vtkExtractTOMResolution.h"
 #include "vtkTOMBuilder.h"
@@ -19,7 +20,6 @@
 #include "vtkCamera.h"
 #include "vtkDoubleArray.h"
 #include "vtkNew.h"
-#include "vtkPNGWriter.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
@@ -30,13 +30,11 @@
 #include "vtkRenderer.h"
 #include "vtkSmartPointer.h"
 #include "vtkSphereSource.h"
-#include "vtkWindowToImageFilter.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <fstream>
 #include <string>
 
@@ -106,13 +104,7 @@ void RenderToPNG(vtkMapper* mapper, const std::string& path)
   window->SetSize(300, 300);
   window->AddRenderer(renderer);
   window->Render();
-  vtkNew<vtkWindowToImageFilter> grab;
-  grab->SetInput(window);
-  grab->ReadFrontBufferOff();
-  vtkNew<vtkPNGWriter> writer;
-  writer->SetInputConnection(grab->GetOutputPort());
-  writer->SetFileName(path.c_str());
-  writer->Write();
+  timecritical::testing::WriteWindowPNG(window, path, true);
 }
 
 std::string BaselinePath(double r)
@@ -127,12 +119,6 @@ std::string OutputPath(const std::string& what, double r)
   char name[96];
   std::snprintf(name, sizeof(name), "/%s_r%03d.png", what.c_str(), static_cast<int>(std::lround(r * 100)));
   return std::string(TIMECRITICAL_TEST_OUTPUT_DIR) + name;
-}
-
-bool UpdatingBaselines()
-{
-  const char* update = std::getenv("TIMECRITICAL_UPDATE_BASELINES");
-  return update && std::string(update) == "1";
 }
 
 class TOMBaseline : public ::testing::TestWithParam<double>
@@ -160,7 +146,7 @@ TEST_P(TOMBaseline, MapperAndExtractionMatchBaseline)
   EXPECT_EQ(tomMapper->GetRenderedTriangles(), extract->GetExtractedTriangleCount());
 
   const std::string baseline = BaselinePath(r);
-  if (UpdatingBaselines())
+  if (timecritical::testing::UpdatingBaselines())
   {
     std::ifstream src(extractImage, std::ios::binary);
     std::ofstream dst(baseline, std::ios::binary);

@@ -4,6 +4,7 @@
 // keeps with pinned cost coefficients (deterministic), still rendering, the
 // heuristics' effect, bad settings, calibration, and image baselines of a
 // frame and its resolution map.
+#include "RenderTestSupport.h"
 #include "TestImageCompare.h"
 #include "vtkMultiresolutionPolyDataMapper.h"
 #include "vtkTOMBuilder.h"
@@ -14,7 +15,6 @@
 #include "vtkCommand.h"
 #include "vtkMultiBlockDataSet.h"
 #include "vtkNew.h"
-#include "vtkPNGWriter.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkPolyDataMapper.h"
@@ -25,18 +25,17 @@
 #include "vtkSphereSource.h"
 #include "vtkTestErrorObserver.h"
 #include "vtkUnsignedCharArray.h"
-#include "vtkWindowToImageFilter.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <cstdlib>
 #include <fstream>
 #include <limits>
 #include <string>
 
 namespace
 {
+namespace tt = timecritical::testing;
 constexpr double NaN = std::numeric_limits<double>::quiet_NaN();
 
 // One bumpy-sphere TOM (about 4,700 triangles), built once.
@@ -142,23 +141,6 @@ struct Scene
   }
 };
 
-bool UpdatingBaselines()
-{
-  const char* update = std::getenv("TIMECRITICAL_UPDATE_BASELINES");
-  return update && std::string(update) == "1";
-}
-
-void WritePNG(vtkRenderWindow* window, const std::string& path)
-{
-  vtkNew<vtkWindowToImageFilter> grab;
-  grab->SetInput(window);
-  grab->ReadFrontBufferOff();
-  grab->ShouldRerenderOff();
-  vtkNew<vtkPNGWriter> writer;
-  writer->SetInputConnection(grab->GetOutputPort());
-  writer->SetFileName(path.c_str());
-  writer->Write();
-}
 }
 
 TEST(TimeCriticalRenderer, CompositeInputIsSplitIntoObjects)
@@ -532,8 +514,8 @@ TEST_P(RendererBaseline, MatchesBaseline)
   const std::string name = resolutionMap ? "TimeCriticalRenderer_map" : "TimeCriticalRenderer";
   const std::string image = std::string(TIMECRITICAL_TEST_OUTPUT_DIR) + "/" + name + ".png";
   const std::string baseline = std::string(TIMECRITICAL_BASELINE_DIR) + "/" + name + ".png";
-  WritePNG(scene.Window, image);
-  if (UpdatingBaselines())
+  tt::WriteWindowPNG(scene.Window, image, false);
+  if (tt::UpdatingBaselines())
   {
     std::ifstream src(image, std::ios::binary);
     std::ofstream dst(baseline, std::ios::binary);
@@ -550,7 +532,7 @@ TEST_P(RendererBaseline, MatchesBaseline)
   {
     scene.Renderer->StillRender();
     const std::string full = std::string(TIMECRITICAL_TEST_OUTPUT_DIR) + "/" + name + "_full.png";
-    WritePNG(scene.Window, full);
+    tt::WriteWindowPNG(scene.Window, full, false);
     const auto differs = timecritical::testing::CompareImages(full, baseline, 0.05);
     ASSERT_TRUE(differs.Loaded) << differs.Message;
     EXPECT_FALSE(timecritical::testing::Passes(differs, tolerance))

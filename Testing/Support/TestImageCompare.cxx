@@ -4,6 +4,7 @@
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>
 
+#include <cstdlib>
 #include <sstream>
 
 namespace timecritical
@@ -65,6 +66,12 @@ std::string Describe(const ImageComparison& result)
   msg << "RMS " << result.RMS << ", PSNR " << result.PSNR << " dB, max " << result.MaxError
       << ", failing " << 100.0 * result.FailingFraction << "%";
   return msg.str();
+}
+
+bool UpdatingBaselines()
+{
+  const char* update = std::getenv("TIMECRITICAL_UPDATE_BASELINES");
+  return update && std::string(update) == "1";
 }
 }
 }

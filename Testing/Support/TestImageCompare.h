@@ -36,6 +36,9 @@ bool Passes(const ImageComparison& result, const ImageTolerance& tolerance);
 
 /// One line describing a comparison, for test failure messages.
 std::string Describe(const ImageComparison& result);
+
+/// True when TIMECRITICAL_UPDATE_BASELINES=1: the tests (re)write their baselines.
+bool UpdatingBaselines();
 }
 }
 
