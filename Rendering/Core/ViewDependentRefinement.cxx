@@ -264,6 +264,7 @@ void ViewDependentRefinement::InitializeImpl(
   this->Active.assign(n, 0);
   this->ActiveChildren.assign(n, 0);
   this->RequiredBy.assign(n, 0);
+  this->Blockers.assign(n, 0);
   this->Display.assign(3 * size_t(nt), 0);
   this->DisplayId.assign(nt, 0);
   this->DisplayPos.assign(nt, None);
@@ -293,6 +294,7 @@ void ViewDependentRefinement::Reset()
   std::fill(this->Active.begin(), this->Active.end(), 0);
   std::fill(this->ActiveChildren.begin(), this->ActiveChildren.end(), 0);
   std::fill(this->RequiredBy.begin(), this->RequiredBy.end(), 0);
+  std::fill(this->Blockers.begin(), this->Blockers.end(), 0);
   std::fill(this->DisplayPos.begin(), this->DisplayPos.end(), None);
   std::fill(this->Active.begin(), this->Active.begin() + this->B, 1);
   std::fill(this->SplitListPos.begin(), this->SplitListPos.end(), None);
@@ -596,20 +598,10 @@ bool ViewDependentRefinement::ForceSplit(uint32_t v)
 
 bool ViewDependentRefinement::CanMerge(uint32_t v) const
 {
-  if (v < this->B || !this->Active[v] || this->ActiveChildren[v] != 0 ||
-    this->RequiredBy[v] != 0 || this->LastActiveChild(this->Parent[v]) != v)
-  {
-    return false;
-  }
-  for (uint32_t i = this->ReqOffsets[v]; i < this->ReqOffsets[size_t(v) + 1]; ++i)
-  {
-    const uint32_t last = this->LastActiveChild(this->Req[i]);
-    if (last != None && last > v)
-    {
-      return false;
-    }
-  }
-  return true;
+  // O(1): the row condition is counted by Split() and Merge() (Blockers).
+  return v >= this->B && this->Active[v] && this->ActiveChildren[v] == 0 &&
+    this->RequiredBy[v] == 0 && this->Blockers[v] == 0 &&
+    this->LastActiveChild(this->Parent[v]) == v;
 }
 
 template <typename F>
@@ -701,6 +693,17 @@ void ViewDependentRefinement::Split(uint32_t v)
   {
     ++this->RequiredBy[this->Req[i]];
   }
+  // u's last displayed child moves from `previous` to v: events between them
+  // whose row holds u now have a row vertex with a displayed child above them.
+  {
+    const uint32_t* begin = this->Rev.data() + this->RevOffsets[u];
+    const uint32_t* end = this->Rev.data() + this->RevOffsets[size_t(u) + 1];
+    for (const uint32_t* r = std::upper_bound(begin, end, previous != None ? previous : 0);
+         r != end && *r < v; ++r)
+    {
+      ++this->Blockers[*r];
+    }
+  }
   for (uint32_t t = this->BlockOffsets[v]; t < this->BlockOffsets[size_t(v) + 1]; ++t)
   {
     this->AddDisplay(t);
@@ -748,6 +751,17 @@ void ViewDependentRefinement::Merge(uint32_t v)
   {
     --this->RequiredBy[this->Req[i]];
   }
+  {
+    // The reverse of Split(): u's last displayed child moves back from v.
+    const uint32_t last = this->LastActiveChild(u);
+    const uint32_t* begin = this->Rev.data() + this->RevOffsets[u];
+    const uint32_t* end = this->Rev.data() + this->RevOffsets[size_t(u) + 1];
+    for (const uint32_t* r = std::upper_bound(begin, end, last != None ? last : 0);
+         r != end && *r < v; ++r)
+    {
+      --this->Blockers[*r];
+    }
+  }
   for (uint32_t t = this->BlockOffsets[v]; t < this->BlockOffsets[size_t(v) + 1]; ++t)
   {
     this->RemoveDisplay(t);
@@ -779,6 +793,24 @@ void ViewDependentRefinement::Merge(uint32_t v)
 }
 
 //------------------------------------------------------------------------------
+bool ViewDependentRefinement::OutOfTime()
+{
+  if (this->OperationLimit > 0 &&
+    this->Statistics.Splits + this->Statistics.Merges + this->UndoneOperations >=
+      this->OperationLimit)
+  {
+    return this->Statistics.Interrupted = true;
+  }
+  // The clock is read every 16 calls (a split or merge is ~0.1-1 us).
+  if (this->Deadline > 0.0 && (++this->Checks & 15) == 0 &&
+    std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count() >=
+      this->Deadline)
+  {
+    return this->Statistics.Interrupted = true;
+  }
+  return false;
+}
+
 void ViewDependentRefinement::MergeUnwanted()
 {
   // Finest first: whatever needs a vertex is finer (larger id), so it has
@@ -804,7 +836,8 @@ void ViewDependentRefinement::MergeUnwanted()
       std::push_heap(queue, queue + this->MergeQueueSize);
     }
   };
-  while (this->MergeQueueSize > 0)
+  while (this->MergeQueueSize > 0 && !(this->Mode == UpdateMode::None && this->Bounded &&
+                                        this->OutOfTime()))
   {
     std::pop_heap(queue, queue + this->MergeQueueSize);
     const uint32_t x = queue[--this->MergeQueueSize];
@@ -904,14 +937,34 @@ void ViewDependentRefinement::OfferMerge(uint32_t v)
  * split when full. Every vertex is split or merged at most once per update
  * (Touched), so the work is bounded by the candidates and the changes.
  */
-const RefinementStatistics& ViewDependentRefinement::UpdateBudget(uint32_t triangleBudget)
+const RefinementStatistics& ViewDependentRefinement::UpdateBudget(
+  uint32_t triangleBudget, double timeLimitSeconds)
 {
   const auto start = std::chrono::steady_clock::now();
   this->Statistics = RefinementStatistics{};
+  this->UndoneOperations = 0;
+  this->Checks = 0;
+  this->Deadline = timeLimitSeconds > 0.0
+    ? std::chrono::duration<double>(start.time_since_epoch()).count() + timeLimitSeconds
+    : 0.0;
+  this->Bounded = this->Deadline > 0.0 || this->OperationLimit > 0;
   this->PrepareView();
   this->NextFrame();
   this->Mode = UpdateMode::None;
   this->MergeUnwanted();
+  auto finish = [&]() -> const RefinementStatistics& {
+    this->Mode = UpdateMode::None;
+    this->Bounded = false;
+    this->Statistics.DisplayVertices = this->ActiveVertexCount;
+    this->Statistics.DisplayTriangles = this->DisplayCount;
+    this->Statistics.Seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return this->Statistics;
+  };
+  if (this->Statistics.Interrupted)
+  {
+    return finish();
+  }
 
   HeapEntry* split = this->SplitHeap.data();
   HeapEntry* merge = this->MergeHeap.data();
@@ -963,8 +1016,17 @@ const RefinementStatistics& ViewDependentRefinement::UpdateBudget(uint32_t trian
     }
     return nullptr;
   };
+  // Full and nothing worth a trade: only splits within the slack may still
+  // be made; give up after this many candidates in a row that do not fit
+  // (otherwise the whole split heap is popped every frame).
+  constexpr uint32_t MisfitLimit = 32;
+  uint32_t misfits = 0;
   for (;;)
   {
+    if (this->Bounded && this->OutOfTime())
+    {
+      break; // every split, forced chain and merge is complete: the front is valid
+    }
     if (this->DisplayCount > triangleBudget)
     {
       const uint32_t m = popMerge();
@@ -1012,6 +1074,7 @@ const RefinementStatistics& ViewDependentRefinement::UpdateBudget(uint32_t trian
         this->Statistics.Splits -= forced;
         this->Statistics.Merges -= forced;
         this->Statistics.ForcedSplits -= forced > 0 ? forced - 1 : 0;
+        this->UndoneOperations += 2 * forced;
       }
       continue;
     }
@@ -1019,7 +1082,12 @@ const RefinementStatistics& ViewDependentRefinement::UpdateBudget(uint32_t trian
     const HeapEntry* m = topMerge();
     if (m == nullptr || !(m->Key < top.Key))
     {
-      // Not worth a trade: leave s out and fill what is left with smaller splits.
+      // Not worth a trade: leave s out and fill what is left with smaller
+      // splits (none when nothing is left).
+      if (this->DisplayCount == triangleBudget || ++misfits > MisfitLimit)
+      {
+        break;
+      }
       std::pop_heap(split, split + this->SplitSize, SplitOrder());
       --this->SplitSize;
       this->Touched[s] = this->Frame;
@@ -1027,12 +1095,7 @@ const RefinementStatistics& ViewDependentRefinement::UpdateBudget(uint32_t trian
     }
     this->Merge(popMerge());
   }
-  this->Mode = UpdateMode::None;
-  this->Statistics.DisplayVertices = this->ActiveVertexCount;
-  this->Statistics.DisplayTriangles = this->DisplayCount;
-  this->Statistics.Seconds =
-    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  return this->Statistics;
+  return finish();
 }
 
 //------------------------------------------------------------------------------

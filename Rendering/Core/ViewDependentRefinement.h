@@ -49,6 +49,9 @@ struct RefinementStatistics
   uint32_t DisplayVertices = 0;
   uint32_t DisplayTriangles = 0;
   double Seconds = 0.0; ///< wall time of the update
+  /// The work bound (time limit, SetOperationLimit()) stopped the update early:
+  /// the front is valid but not yet what an unbounded update would give.
+  bool Interrupted = false;
 };
 
 /**
@@ -147,8 +150,27 @@ public:
    * at most `triangleBudget` (unless the coarsest mesh is larger, or forced
    * splits overshoot by a few triangles), spent where the projected error
    * divided by the local threshold factors is largest.
+   *
+   * Work bound: with timeLimitSeconds > 0 (and/or SetOperationLimit()) the
+   * update stops once that much time has gone (checked every 16 operations,
+   * so it may run over by a few microseconds; the priority sweep at the start,
+   * O(candidates), is not interrupted) and sets Statistics.Interrupted. Every
+   * split (with its forced splits) and merge is complete, so the front is
+   * valid, but it may still be over the budget (merges come first when it is).
+   * Successive calls with the same view and budget continue from there and
+   * reach the front of an unbounded update.
    */
-  const RefinementStatistics& UpdateBudget(uint32_t triangleBudget);
+  const RefinementStatistics& UpdateBudget(uint32_t triangleBudget, double timeLimitSeconds = 0.0);
+
+  //@{
+  /**
+   * At most this many splits and merges per budget update (forced and undone
+   * ones included); 0 (default): no limit. A deterministic work bound (tests,
+   * callers that measure their own operation rate).
+   */
+  void SetOperationLimit(uint32_t operations) { this->OperationLimit = operations; }
+  uint32_t GetOperationLimit() const { return this->OperationLimit; }
+  //@}
 
   const RefinementStatistics& GetStatistics() const { return this->Statistics; }
 
@@ -210,8 +232,11 @@ private:
   /// Calls f on every vertex that the merge of v (child of u) may have made mergeable.
   template <typename F>
   void ForEachReleased(uint32_t v, uint32_t u, F f) const;
-  /// Merges every unwanted vertex that nothing displayed needs, finest first.
+  /// Merges every unwanted vertex that nothing displayed needs, finest first
+  /// (stops early when a bounded budget update runs out of time).
   void MergeUnwanted();
+  /// Whether the running bounded budget update must stop (sets Interrupted).
+  bool OutOfTime();
   // Budget mode: push a split or merge candidate with its current priority.
   void OfferSplit(uint32_t c);
   void OfferMerge(uint32_t v);
@@ -237,6 +262,9 @@ private:
   std::vector<uint32_t> ReqOffsets, Req;
   std::vector<uint32_t> RevOffsets, Rev;
   std::vector<uint32_t> RequiredBy; // displayed vertices whose row holds the vertex
+  // Row vertices of the vertex with a displayed child above it (that child needs
+  // it), kept by Split() and Merge() so that CanMerge() is O(1).
+  std::vector<uint32_t> Blockers;
   std::vector<uint32_t> BlockOffsets; // triangles of block v: [BlockOffsets[v], BlockOffsets[v+1])
   std::vector<uint32_t> BirthCorners; // corners of each triangle when it appears
   std::vector<uint32_t> StarOffsets, StarSlots; // slots 3t+k that turn from parent to v at split
@@ -269,6 +297,12 @@ private:
   uint32_t SplitSize = 0, MergeSize = 0;
   std::vector<uint32_t> SplitLog; // splits of the current forced split, to undo an overshoot
   uint32_t SplitLogSize = 0;
+  // Work bound of the running budget update.
+  uint32_t OperationLimit = 0;
+  uint32_t UndoneOperations = 0; // splits and merges of undone forced splits
+  uint32_t Checks = 0;
+  double Deadline = 0.0; // steady clock, seconds; 0: none
+  bool Bounded = false;
 
   bool WingDependencies = false;
   RefinementView View;

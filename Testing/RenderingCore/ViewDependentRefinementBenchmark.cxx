@@ -1,35 +1,174 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// ViewDependentRefinementBenchmark [mesh] [--json FILE]: on an orbit around
-// the mesh (igea by default): the display triangle fraction at tau = 1 px,
-// 512 x 512, the share of forced splits (fronts from scratch), what back-face
-// simplification and a half-space frustum save, the incremental
-// fixed-accuracy and budget update times near 100K display triangles (median,
-// mean, worst), and ComputeMergeTree's time per million triangles.
+// ViewDependentRefinementBenchmark [mesh] [--json FILE] [--loop N] [--w2-only]
+// [--limit SECONDS]: on an orbit around the mesh (igea by default): the
+// display triangle fraction at tau = 1 px, 512 x 512, the share of forced
+// splits (fronts from scratch), what back-face simplification and a
+// half-space frustum save, the incremental fixed-accuracy and budget update
+// times near 100K display triangles (median, mean, worst), and
+// ComputeMergeTree's time per million triangles.
+//
+// W2-like scenario (after the above, or alone with --w2-only; --loop 1 gives
+// W2's 1.07M-triangle igea): 512 px, tau floor 0, a camera path of 3-5
+// degrees and up to 10% zoom per frame, budgets moving by 5-20% per frame
+// within 50-120K triangles; budget update times unbounded and with a work
+// bound of --limit seconds (default 5 ms). Under callgrind
+// (--instr-atstart=no) only the unbounded W2-like updates are instrumented.
 #include "MergeTreeAttributes.h"
 #include "TOMBuilder.h"
 #include "TestMeshIO.h"
 #include "ViewDependentRefinement.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <map>
 #include <numeric>
 #include <string>
 #include <vector>
 
+#if defined(__has_include)
+#if __has_include(<valgrind/callgrind.h>)
+#include <valgrind/callgrind.h>
+#endif
+#endif
+#ifndef CALLGRIND_START_INSTRUMENTATION
+#define CALLGRIND_START_INSTRUMENTATION
+#define CALLGRIND_STOP_INSTRUMENTATION
+#endif
+
 using namespace timecritical;
+
+namespace
+{
+/// One Loop subdivision (boundary vertices and edges: cubic B-spline rules).
+testing::TriangleMesh LoopSubdivide(const testing::TriangleMesh& in)
+{
+  const size_t np = in.NumberOfPoints(), nt = in.NumberOfTriangles();
+  std::map<std::pair<uint32_t, uint32_t>, std::array<uint32_t, 3>> edges; // opposite a, b; new id
+  auto key = [](uint32_t a, uint32_t b) { return std::make_pair(std::min(a, b), std::max(a, b)); };
+  for (size_t t = 0; t < nt; ++t)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      const uint32_t a = in.Triangles[3 * t + k], b = in.Triangles[3 * t + (k + 1) % 3];
+      const uint32_t c = in.Triangles[3 * t + (k + 2) % 3];
+      auto it = edges.find(key(a, b));
+      if (it == edges.end())
+      {
+        edges.emplace(key(a, b), std::array<uint32_t, 3>{ c, UINT32_MAX, 0 });
+      }
+      else
+      {
+        it->second[1] = c;
+      }
+    }
+  }
+  testing::TriangleMesh out;
+  out.Points.assign(3 * (np + edges.size()), 0.0);
+  std::vector<double> ring(3 * np, 0.0), bnd(3 * np, 0.0);
+  std::vector<uint32_t> valence(np, 0), boundary(np, 0);
+  uint32_t next = uint32_t(np);
+  for (auto& e : edges)
+  {
+    const uint32_t a = e.first.first, b = e.first.second;
+    e.second[2] = next++;
+    const bool open = e.second[1] == UINT32_MAX;
+    for (int k = 0; k < 3; ++k)
+    {
+      const double pa = in.Points[3 * a + k], pb = in.Points[3 * b + k];
+      double p = 0.5 * (pa + pb);
+      if (!open)
+      {
+        p = 0.375 * (pa + pb) +
+          0.125 * (in.Points[3 * size_t(e.second[0]) + k] + in.Points[3 * size_t(e.second[1]) + k]);
+      }
+      out.Points[3 * size_t(e.second[2]) + k] = p;
+      ring[3 * a + k] += pb;
+      ring[3 * b + k] += pa;
+      if (open)
+      {
+        bnd[3 * a + k] += pb;
+        bnd[3 * b + k] += pa;
+      }
+    }
+    ++valence[a];
+    ++valence[b];
+    boundary[a] += open;
+    boundary[b] += open;
+  }
+  const double pi = 3.14159265358979323846;
+  for (size_t v = 0; v < np; ++v)
+  {
+    const double n = valence[v];
+    double beta = 0.0, self = 1.0;
+    if (boundary[v] == 2)
+    {
+      self = 0.75;
+    }
+    else if (boundary[v] == 0 && n > 0)
+    {
+      const double c = 0.375 + 0.25 * std::cos(2 * pi / n);
+      beta = (0.625 - c * c) / n;
+      self = 1.0 - n * beta;
+    }
+    for (int k = 0; k < 3; ++k)
+    {
+      double p = self * in.Points[3 * v + k];
+      p += boundary[v] == 2 ? 0.125 * bnd[3 * v + k] : beta * ring[3 * v + k];
+      out.Points[3 * v + k] = p;
+    }
+  }
+  out.Triangles.reserve(12 * nt);
+  for (size_t t = 0; t < nt; ++t)
+  {
+    uint32_t c[3], m[3];
+    for (int k = 0; k < 3; ++k)
+    {
+      c[k] = in.Triangles[3 * t + k];
+    }
+    for (int k = 0; k < 3; ++k)
+    {
+      m[k] = edges.at(key(c[k], c[(k + 1) % 3]))[2];
+    }
+    const uint32_t tris[4][3] = { { c[0], m[0], m[2] }, { m[0], c[1], m[1] },
+      { m[2], m[1], c[2] }, { m[0], m[1], m[2] } };
+    for (const auto& tri : tris)
+    {
+      out.Triangles.insert(out.Triangles.end(), tri, tri + 3);
+    }
+  }
+  return out;
+}
+}
 
 int main(int argc, char** argv)
 {
   std::string path = testing::SharedDataDirectory() + "/igea.ply";
   std::string json;
+  int loops = 0;
+  bool w2Only = false;
+  double limit = 0.005;
   for (int i = 1; i < argc; ++i)
   {
     const std::string a = argv[i];
     if (a == "--json" && i + 1 < argc)
     {
       json = argv[++i];
+    }
+    else if (a == "--loop" && i + 1 < argc)
+    {
+      loops = std::atoi(argv[++i]);
+    }
+    else if (a == "--limit" && i + 1 < argc)
+    {
+      limit = std::atof(argv[++i]);
+    }
+    else if (a == "--w2-only")
+    {
+      w2Only = true;
     }
     else
     {
@@ -38,6 +177,10 @@ int main(int argc, char** argv)
   }
   testing::TriangleMesh mesh =
     testing::RemoveUnusedPoints(testing::WeldPoints(testing::LoadMesh(path)));
+  for (int i = 0; i < loops; ++i)
+  {
+    mesh = LoopSubdivide(mesh);
+  }
   const TOMBuildResult r = TOMBuilder().Build(
     mesh.Points.data(), mesh.NumberOfPoints(), mesh.Triangles.data(), mesh.NumberOfTriangles());
   std::vector<double> points(3 * r.VertexOrder.size());
@@ -87,6 +230,75 @@ int main(int argc, char** argv)
     std::sort(x.begin(), x.end());
     return x.empty() ? 0.0 : x[x.size() / 2];
   };
+
+  // W2-like scenario: large view changes and budgets moving by thousands of
+  // triangles each frame (see the file comment). Deterministic path.
+  struct W2Figures
+  {
+    double Median = 0, Mean = 0, Worst = 0, Triangles = 0, Operations = 0, Lag = 0;
+  };
+  const int w2Frames = 120;
+  auto runW2 = [&](double timeLimit, bool instrument) {
+    uint64_t state = 12345;
+    auto uniform = [&state]() {
+      state = state * 6364136223846793005ull + 1442695040888963407ull;
+      return double(state >> 11) * (1.0 / 9007199254740992.0);
+    };
+    const double lowBudget = std::min(50000.0, 0.05 * full);
+    const double highBudget = std::min(120000.0, 0.12 * full);
+    double angle = 0, zoom = 1.0, budget = 0.5 * (lowBudget + highBudget);
+    vdr.SetPixelThreshold(0.0);
+    vdr.SetBackFaceSimplification(true);
+    vdr.Reset();
+    vdr.SetView(orbit(angle, zoom, 512));
+    vdr.UpdateBudget(uint32_t(budget)); // warm-up: the first front
+    std::vector<double> times;
+    W2Figures f;
+    for (int i = 0; i < w2Frames; ++i)
+    {
+      angle += (3.0 + 2.0 * uniform()) * pi / 180;
+      zoom = std::min(1.6, std::max(0.5, zoom * (1.0 + 0.1 * (2 * uniform() - 1))));
+      const double change = 0.05 + 0.15 * uniform();
+      budget *= uniform() < 0.5 ? 1.0 - change : 1.0 + change;
+      budget = std::min(highBudget, std::max(lowBudget, budget));
+      vdr.SetView(orbit(angle, zoom, 512));
+      if (instrument)
+      {
+        CALLGRIND_START_INSTRUMENTATION;
+      }
+      const RefinementStatistics& s = vdr.UpdateBudget(uint32_t(budget), timeLimit);
+      if (instrument)
+      {
+        CALLGRIND_STOP_INSTRUMENTATION;
+      }
+      times.push_back(s.Seconds);
+      f.Triangles += s.DisplayTriangles;
+      f.Operations += s.Splits + s.Merges;
+      f.Lag += std::abs(double(s.DisplayTriangles) - budget) / budget;
+    }
+    f.Median = median(times);
+    f.Mean = std::accumulate(times.begin(), times.end(), 0.0) / w2Frames;
+    f.Worst = *std::max_element(times.begin(), times.end());
+    f.Triangles /= w2Frames;
+    f.Operations /= w2Frames;
+    f.Lag /= w2Frames;
+    std::printf("W2-like budget updates (%s): %.0f display triangles, %.0f splits + merges per "
+                "frame, median %.3f ms, mean %.3f ms, worst %.3f ms, mean |triangles - "
+                "budget| / budget %.2f%%\n",
+      timeLimit > 0 ? ("limit " + std::to_string(1e3 * timeLimit) + " ms").c_str() : "unbounded",
+      f.Triangles, f.Operations, 1e3 * f.Median, 1e3 * f.Mean, 1e3 * f.Worst, 100 * f.Lag);
+    return f;
+  };
+  if (w2Only)
+  {
+    std::printf("%s: %u triangles\n", path.c_str(), full);
+    runW2(0.0, true);
+    if (limit > 0)
+    {
+      runW2(limit, false);
+    }
+    return 0;
+  }
 
   // At tau = 1 px, 512 x 512, fronts from scratch: triangle fraction, forced
   // share, back-face and frustum savings (frustum: the half-space right of the
@@ -180,6 +392,8 @@ int main(int argc, char** argv)
               "ms, worst %.3f ms per frame\n",
     budget, tau, budgetTriangles / frames, 1e3 * budgetMedian, 1e3 * budgetMean,
     1e3 * budgetWorst);
+  const W2Figures w2 = runW2(0.0, false);
+  const W2Figures w2Bounded = limit > 0 ? runW2(limit, false) : W2Figures{};
   if (!json.empty())
   {
     FILE* out = std::fopen(json.c_str(), "w");
@@ -197,11 +411,17 @@ int main(int argc, char** argv)
       "  \"fixed_update_ms_median\": %.4f,\n  \"fixed_update_ms_mean\": %.4f,\n"
       "  \"fixed_update_ms_worst\": %.4f,\n  \"budget\": %u,\n"
       "  \"budget_display_triangles\": %.0f,\n  \"budget_update_ms_median\": %.4f,\n"
-      "  \"budget_update_ms_mean\": %.4f,\n  \"budget_update_ms_worst\": %.4f\n}\n",
+      "  \"budget_update_ms_mean\": %.4f,\n  \"budget_update_ms_worst\": %.4f,\n"
+      "  \"w2_update_ms_median\": %.4f,\n  \"w2_update_ms_mean\": %.4f,\n"
+      "  \"w2_update_ms_worst\": %.4f,\n  \"w2_display_triangles\": %.0f,\n"
+      "  \"w2_limit_s\": %.4f,\n  \"w2_bounded_update_ms_median\": %.4f,\n"
+      "  \"w2_bounded_update_ms_mean\": %.4f,\n  \"w2_bounded_update_ms_worst\": %.4f,\n"
+      "  \"w2_bounded_budget_lag\": %.4f\n}\n",
       path.c_str(), full, treeSeconds * 1e6 / full, fraction, forcedShare, backSaving,
       frustumSaving, tau, triangles / frames, 1e3 * fixedMedian, 1e3 * fixedMean,
       1e3 * fixedWorst, budget, budgetTriangles / frames, 1e3 * budgetMedian, 1e3 * budgetMean,
-      1e3 * budgetWorst);
+      1e3 * budgetWorst, 1e3 * w2.Median, 1e3 * w2.Mean, 1e3 * w2.Worst, w2.Triangles, limit,
+      1e3 * w2Bounded.Median, 1e3 * w2Bounded.Mean, 1e3 * w2Bounded.Worst, w2Bounded.Lag);
     std::fclose(out);
   }
   return 0;
