@@ -285,6 +285,7 @@ void ViewDependentRefinement::InitializeImpl(
   this->SplitHeap.assign(4 * size_t(n) + 64, HeapEntry{});
   this->MergeHeap.assign(4 * size_t(n) + 64, HeapEntry{});
   this->SplitLog.assign(n, 0);
+  this->TradeLog.assign(n, 0);
   this->Reset();
 }
 
@@ -313,6 +314,7 @@ void ViewDependentRefinement::Reset()
     this->AddDisplay(t);
   }
   this->Statistics = RefinementStatistics{};
+  this->ContinueUpdate = false;
   this->Statistics.DisplayVertices = this->ActiveVertexCount;
   this->Statistics.DisplayTriangles = this->DisplayCount;
 }
@@ -464,6 +466,7 @@ void ViewDependentRefinement::NextFrame()
     std::fill(this->Queued.begin(), this->Queued.end(), 0u);
     std::fill(this->Touched.begin(), this->Touched.end(), 0u);
     this->Frame = 1;
+    this->TouchFrame = 0;
   }
 }
 
@@ -733,7 +736,7 @@ void ViewDependentRefinement::Split(uint32_t v)
   }
   else if (this->Mode == UpdateMode::Budget)
   {
-    this->Touched[v] = this->Frame;
+    this->Touched[v] = this->TouchFrame;
     this->SplitLog[this->SplitLogSize++] = v;
     this->OfferSplit(this->NextChild(u));
     this->OfferSplit(this->NextChild(v));
@@ -786,7 +789,7 @@ void ViewDependentRefinement::Merge(uint32_t v)
   }
   if (this->Mode == UpdateMode::Budget)
   {
-    this->Touched[v] = this->Frame;
+    this->Touched[v] = this->TouchFrame;
     this->OfferSplit(v);
     this->ForEachReleased(v, u, [this](uint32_t x) { this->OfferMerge(x); });
   }
@@ -854,6 +857,7 @@ const RefinementStatistics& ViewDependentRefinement::UpdateFixedAccuracy()
 {
   const auto start = std::chrono::steady_clock::now();
   this->Statistics = RefinementStatistics{};
+  this->ContinueUpdate = false;
   this->PrepareView();
   this->NextFrame();
   // Splits: every wanted candidate (next child of a display vertex), with
@@ -909,7 +913,7 @@ struct MergeOrder
 void ViewDependentRefinement::OfferSplit(uint32_t c)
 {
   // Sub-threshold detail is never bought, even when the budget allows it.
-  if (c == None || this->Active[c] || this->Touched[c] == this->Frame ||
+  if (c == None || this->Active[c] || this->Touched[c] == this->TouchFrame ||
     this->SplitSize == this->SplitHeap.size() || !this->Wanted(c))
   {
     return;
@@ -920,7 +924,7 @@ void ViewDependentRefinement::OfferSplit(uint32_t c)
 
 void ViewDependentRefinement::OfferMerge(uint32_t v)
 {
-  if (v == None || this->Touched[v] == this->Frame || this->MergeSize == this->MergeHeap.size() ||
+  if (v == None || this->Touched[v] == this->TouchFrame || this->MergeSize == this->MergeHeap.size() ||
     !this->CanMerge(v))
   {
     return;
@@ -950,11 +954,19 @@ const RefinementStatistics& ViewDependentRefinement::UpdateBudget(
   this->Bounded = this->Deadline > 0.0 || this->OperationLimit > 0;
   this->PrepareView();
   this->NextFrame();
+  // After an interrupted update the next one continues it: what that one split,
+  // merged or left out stays so (otherwise calls whose bound is spent on the
+  // same failed candidates would never progress).
+  if (!this->ContinueUpdate || this->TouchFrame == 0)
+  {
+    this->TouchFrame = this->Frame;
+  }
   this->Mode = UpdateMode::None;
   this->MergeUnwanted();
   auto finish = [&]() -> const RefinementStatistics& {
     this->Mode = UpdateMode::None;
     this->Bounded = false;
+    this->ContinueUpdate = this->Statistics.Interrupted;
     this->Statistics.DisplayVertices = this->ActiveVertexCount;
     this->Statistics.DisplayTriangles = this->DisplayCount;
     this->Statistics.Seconds =
@@ -996,7 +1008,7 @@ const RefinementStatistics& ViewDependentRefinement::UpdateBudget(
     {
       std::pop_heap(merge, merge + this->MergeSize, MergeOrder());
       const uint32_t m = merge[--this->MergeSize].Id;
-      if (this->Touched[m] != this->Frame && this->CanMerge(m))
+      if (this->Touched[m] != this->TouchFrame && this->CanMerge(m))
       {
         return m;
       }
@@ -1007,7 +1019,7 @@ const RefinementStatistics& ViewDependentRefinement::UpdateBudget(
     while (this->MergeSize > 0)
     {
       const uint32_t m = merge[0].Id;
-      if (this->Touched[m] != this->Frame && this->CanMerge(m))
+      if (this->Touched[m] != this->TouchFrame && this->CanMerge(m))
       {
         return merge;
       }
@@ -1021,9 +1033,30 @@ const RefinementStatistics& ViewDependentRefinement::UpdateBudget(
   // (otherwise the whole split heap is popped every frame).
   constexpr uint32_t MisfitLimit = 32;
   uint32_t misfits = 0;
+  // Replays the merges of a failed trade backwards (legal: it restores the
+  // front before them) and offers them as merge candidates again.
+  auto undoTrade = [&]() {
+    const uint32_t count = this->TradeLogSize;
+    this->Mode = UpdateMode::None;
+    while (this->TradeLogSize > 0)
+    {
+      const uint32_t x = this->TradeLog[--this->TradeLogSize];
+      this->Split(x);
+      this->Touched[x] = 0;
+    }
+    this->Mode = UpdateMode::Budget;
+    for (uint32_t i = 0; i < count; ++i)
+    {
+      this->OfferMerge(this->TradeLog[i]);
+    }
+    this->Statistics.Splits -= count;
+    this->Statistics.Merges -= count;
+    this->UndoneOperations += 2 * count;
+  };
+  this->TradeLogSize = 0;
   for (;;)
   {
-    if (this->Bounded && this->OutOfTime())
+    if (this->Bounded && this->TradeLogSize == 0 && this->OutOfTime())
     {
       break; // every split, forced chain and merge is complete: the front is valid
     }
@@ -1043,7 +1076,7 @@ const RefinementStatistics& ViewDependentRefinement::UpdateBudget(
     }
     const HeapEntry top = split[0];
     const uint32_t s = top.Id;
-    if (this->Active[s] || this->Touched[s] == this->Frame || !this->Active[this->Parent[s]] ||
+    if (this->Active[s] || this->Touched[s] == this->TouchFrame || !this->Active[this->Parent[s]] ||
       this->NextChild(this->Parent[s]) != s)
     {
       std::pop_heap(split, split + this->SplitSize, SplitOrder());
@@ -1057,7 +1090,11 @@ const RefinementStatistics& ViewDependentRefinement::UpdateBudget(
       --this->SplitSize;
       this->SplitLogSize = 0;
       this->ForceSplit(s);
-      if (this->DisplayCount > triangleBudget)
+      if (this->DisplayCount <= triangleBudget)
+      {
+        this->TradeLogSize = 0; // the trade is made
+      }
+      else
       {
         // The forced splits overshoot: replay them backwards (always legal,
         // it restores the previous front) and leave s out for this update.
@@ -1070,31 +1107,47 @@ const RefinementStatistics& ViewDependentRefinement::UpdateBudget(
           this->Touched[x] = 0; // may still be split for another candidate
         }
         this->Mode = UpdateMode::Budget;
-        this->Touched[s] = this->Frame;
+        this->Touched[s] = this->TouchFrame;
         this->Statistics.Splits -= forced;
         this->Statistics.Merges -= forced;
         this->Statistics.ForcedSplits -= forced > 0 ? forced - 1 : 0;
         this->UndoneOperations += 2 * forced;
+        undoTrade();
       }
       continue;
     }
     // Full: trade the least useful merge for the most useful split.
+    if (this->TradeLogSize > 0 && this->TradeFor != s)
+    {
+      this->TradeLogSize = 0; // cannot happen (s stays on top); keep the merges
+    }
     const HeapEntry* m = topMerge();
     if (m == nullptr || !(m->Key < top.Key))
     {
       // Not worth a trade: leave s out and fill what is left with smaller
       // splits (none when nothing is left).
-      if (this->DisplayCount == triangleBudget || ++misfits > MisfitLimit)
+      if (this->TradeLogSize > 0)
+      {
+        undoTrade(); // s cannot be paid for with less useful merges
+      }
+      else if (this->DisplayCount == triangleBudget || ++misfits > MisfitLimit)
       {
         break;
       }
       std::pop_heap(split, split + this->SplitSize, SplitOrder());
       --this->SplitSize;
-      this->Touched[s] = this->Frame;
+      this->Touched[s] = this->TouchFrame;
       continue;
     }
-    this->Merge(popMerge());
+    // A trade is atomic: its merges are logged and undone when s is not
+    // made after all, so that a failed trade does not lose detail (and
+    // repeated updates settle instead of cycling).
+    const uint32_t merged = popMerge();
+    this->Merge(merged);
+    this->TradeFor = s;
+    this->TradeLog[this->TradeLogSize++] = merged;
   }
+  this->TradeLogSize = 0;
   return finish();
 }
 

@@ -284,7 +284,9 @@ private:
   std::vector<float> KeyCache;      // Priority() of this frame
   std::vector<uint32_t> KeyFrame;   // frame stamp of KeyCache
   std::vector<uint32_t> Queued;     // frame stamp: in the merge queue
-  std::vector<uint32_t> Touched;    // frame stamp: split or merged by this budget update
+  std::vector<uint32_t> Touched;    // TouchFrame stamp: split, merged or left out by this budget update
+  uint32_t TouchFrame = 0;          // Frame of the budget update that an interrupted one continues
+  bool ContinueUpdate = false;      // the last budget update was interrupted
   uint32_t Frame = 0;
 
   std::vector<uint32_t> Stack; // forced splits
@@ -297,6 +299,9 @@ private:
   uint32_t SplitSize = 0, MergeSize = 0;
   std::vector<uint32_t> SplitLog; // splits of the current forced split, to undo an overshoot
   uint32_t SplitLogSize = 0;
+  std::vector<uint32_t> TradeLog; // merges of the running trade, to undo a failed one
+  uint32_t TradeLogSize = 0;
+  uint32_t TradeFor = 0; // the split the running trade pays for
   // Work bound of the running budget update.
   uint32_t OperationLimit = 0;
   uint32_t UndoneOperations = 0; // splits and merges of undone forced splits
