@@ -139,6 +139,55 @@ double PointTriangleDistance2(const Vec& p, const Vec& a, const Vec& b, const Ve
   return Dot(q, q);
 }
 
+/// Barycentric weights (of a, b, c) of the point of triangle abc closest to p
+/// (the closest-point regions of PointTriangleDistance2).
+Vec ClosestWeights(const Vec& p, const Vec& a, const Vec& b, const Vec& c)
+{
+  const Vec ab = Sub(b, a), ac = Sub(c, a), ap = Sub(p, a);
+  const double d1 = Dot(ab, ap), d2 = Dot(ac, ap);
+  if (d1 <= 0 && d2 <= 0)
+  {
+    return { 1.0, 0.0, 0.0 };
+  }
+  const Vec bp = Sub(p, b);
+  const double d3 = Dot(ab, bp), d4 = Dot(ac, bp);
+  if (d3 >= 0 && d4 <= d3)
+  {
+    return { 0.0, 1.0, 0.0 };
+  }
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0)
+  {
+    const double v = d1 / (d1 - d3);
+    return { 1.0 - v, v, 0.0 };
+  }
+  const Vec cp = Sub(p, c);
+  const double d5 = Dot(ab, cp), d6 = Dot(ac, cp);
+  if (d6 >= 0 && d5 <= d6)
+  {
+    return { 0.0, 0.0, 1.0 };
+  }
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0)
+  {
+    const double w = d2 / (d2 - d6);
+    return { 1.0 - w, 0.0, w };
+  }
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0)
+  {
+    const double w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+    return { 0.0, 1.0 - w, w };
+  }
+  const double denom = va + vb + vc;
+  if (!(std::abs(denom) > 0.0))
+  {
+    return { 1.0, 0.0, 0.0 };
+  }
+  const double v = vb / denom, w = vc / denom;
+  return { 1.0 - v - w, v, w };
+}
+
 /**
  * min(best2, squared distance from p to triangle abc), skipping the exact
  * closest-point search when the distance to the triangle's plane (a lower
@@ -156,6 +205,22 @@ inline double NearerTriangle(double best2, const Vec& p, const Vec& a, const Vec
   }
   return std::min(best2, PointTriangleDistance2(p, a, b, c));
 }
+
+/// Angle in radians between unit vectors (clamped against rounding).
+inline double Angle(const Vec& a, const Vec& b)
+{
+  return std::acos(std::max(-1.0, std::min(1.0, Dot(a, b))));
+}
+
+/// Shading state of one vertex: its own (full-resolution) normal, which the
+/// renderer interpolates wherever the vertex is displayed, and the normal
+/// error (radians) of the node merged into it so far.
+struct alignas(16) Shade
+{
+  float N[3];
+  float Deviation;
+};
+static_assert(sizeof(Shade) == 16, "four vertices per cache line");
 
 /// Float not below x (radii and errors must stay upper bounds after storage).
 float RoundUp(double x)
@@ -239,8 +304,14 @@ void SortRow(uint32_t* first, uint32_t* last)
 // next events' lines are prefetched, and the monotone pass ("must be split
 // first", ViewDependentRefinement's rule) runs in the same loop: every event it
 // depends on is earlier in the replay, so its final error and depth are known.
-MergeTree ComputeMergeTree(const TOMMesh& tom, const double* points, const uint16_t* levels)
+MergeTree ComputeMergeTree(const TOMMesh& tom, const double* points, const uint16_t* levels,
+  const MergeTreeErrorOptions& options)
 {
+  if (!(options.ShadingWeight >= 0.0) || !std::isfinite(options.ShadingWeight))
+  {
+    throw std::invalid_argument("ComputeMergeTree: ShadingWeight must be finite and >= 0");
+  }
+  const double shadingWeight = options.ShadingWeight;
   const std::string problem = TOMValidator::Check(tom);
   if (!problem.empty())
   {
@@ -302,6 +373,7 @@ MergeTree ComputeMergeTree(const TOMMesh& tom, const double* points, const uint1
   // vertex over its fan, so the cones are written in order; sums run in
   // triangle order as before, so the result is the same to the bit.
   std::vector<Cone> cone(N);
+  std::vector<Shade> shade(N);
   {
     constexpr uint32_t Ahead = 8; // triangles whose vertices are prefetched
     std::vector<Vec> faceArea(T); // cross products: twice the area times the normal
@@ -374,9 +446,14 @@ MergeTree ComputeMergeTree(const TOMMesh& tom, const double* points, const uint1
       if (!(len > 0.0))
       {
         cone[v] = { { 0.0, 0.0, 1.0 }, Pi }; // no usable face: any direction
+        shade[v] = { { 0.0f, 0.0f, 1.0f }, 0.0f };
         continue;
       }
       const Vec axis = { sum.X / len, sum.Y / len, sum.Z / len };
+      // The vertex normal (area-weighted, as the leaf cone's axis).
+      shade[v] = { { static_cast<float>(axis.X), static_cast<float>(axis.Y),
+                     static_cast<float>(axis.Z) },
+        0.0f };
       double minCos = 1.0;
       for (uint32_t i = 0; i < count; ++i)
       {
@@ -420,6 +497,8 @@ MergeTree ComputeMergeTree(const TOMMesh& tom, const double* points, const uint1
       Prefetch(&node[S[w]]);
       Prefetch(&cone[w]);
       Prefetch(&cone[S[w]]);
+      Prefetch(&shade[w]);
+      Prefetch(&shade[S[w]]);
     }
     if (v >= B + 3)
     {
@@ -448,6 +527,8 @@ MergeTree ComputeMergeTree(const TOMMesh& tom, const double* points, const uint1
           const uint32_t k = f[i] % 3;
           Prefetch(&node[r.Cur[Succ[k]]]);
           Prefetch(&node[r.Cur[Pred[k]]]);
+          Prefetch(&shade[r.Cur[Succ[k]]]);
+          Prefetch(&shade[r.Cur[Pred[k]]]);
         }
       }
     }
@@ -457,6 +538,7 @@ MergeTree ComputeMergeTree(const TOMMesh& tom, const double* points, const uint1
     const Vec pv = { nv.X, nv.Y, nv.Z }, pu = { nu.X, nu.Y, nu.Z };
     const size_t rowBegin = rows.size();
     double local2 = std::numeric_limits<double>::infinity();
+    uint32_t nearA = None, nearB = None; // triangle (u, a, b) of the new fan nearest to v
     nu.Mark = v;
     nv.Mark = v;
     auto addNeighbor = [&](uint32_t w) {
@@ -492,7 +574,13 @@ MergeTree ComputeMergeTree(const TOMMesh& tom, const double* points, const uint1
       }
       else
       {
-        local2 = NearerTriangle(local2, pv, pu, P(a), P(b));
+        const double d2 = NearerTriangle(local2, pv, pu, P(a), P(b));
+        if (d2 < local2)
+        {
+          local2 = d2;
+          nearA = a;
+          nearB = b;
+        }
         r.Cur[k] = u;
         *out++ = s;
       }
@@ -511,7 +599,13 @@ MergeTree ComputeMergeTree(const TOMMesh& tom, const double* points, const uint1
       const uint32_t a = r.Cur[Succ[k]], b = r.Cur[Pred[k]];
       addNeighbor(a);
       addNeighbor(b);
-      local2 = NearerTriangle(local2, pv, pu, P(a), P(b));
+      const double d2 = NearerTriangle(local2, pv, pu, P(a), P(b));
+      if (d2 < local2)
+      {
+        local2 = d2;
+        nearA = a;
+        nearB = b;
+      }
       *out++ = s;
     }
     nu.FanStart = static_cast<uint32_t>(fanEnd);
@@ -533,6 +627,41 @@ MergeTree ComputeMergeTree(const TOMMesh& tom, const double* points, const uint1
     nu.Error = nodeError;
     Cone& cu = cone[u];
     cu = MergeCones(cu, cone[v]);
+
+    // Shading: the renderer interpolates the display vertices' own
+    // (full-resolution) normals, so where v was, it now shows the normals of
+    // u, a, b mixed at v's nearest point of the new fan (smooth curvature and
+    // creases kept by the collapse are reproduced; a lost bump is not). The
+    // angle between that and v's normal is the local normal error, summed
+    // over the children like the geometric error (the triangle inequality on
+    // the sphere, as the normals shown near earlier merged vertices move with
+    // this change).
+    Shade& su = shade[u];
+    const Shade& sv = shade[v];
+    const Vec nuN = { su.N[0], su.N[1], su.N[2] };
+    const Vec nvN = { sv.N[0], sv.N[1], sv.N[2] };
+    double localAngle = Angle(nuN, nvN);
+    if (nearA != None)
+    {
+      const Vec w = ClosestWeights(pv, pu, P(nearA), P(nearB));
+      const Shade& sa = shade[nearA];
+      const Shade& sb = shade[nearB];
+      const Vec shown = { w.X * nuN.X + w.Y * sa.N[0] + w.Z * sb.N[0],
+        w.X * nuN.Y + w.Y * sa.N[1] + w.Z * sb.N[1], w.X * nuN.Z + w.Y * sa.N[2] + w.Z * sb.N[2] };
+      const double len = Norm(shown);
+      if (len > 1e-12)
+      {
+        localAngle = Angle(nvN, { shown.X / len, shown.Y / len, shown.Z / len });
+      }
+    }
+    const double deviation =
+      std::min(std::max<double>(su.Deviation, sv.Deviation) + localAngle, Pi);
+    su.Deviation = static_cast<float>(deviation);
+    // Shading error as a length: a deviation of the normal by an angle over
+    // the node's radius is the height a tangent plane tilted by that angle
+    // gains over the node, so its projection in pixels grows with the node's
+    // projected size, as the node's share of a squared image error does.
+    const double shadingError = shadingWeight * radius * deviation;
     tree.Radius[v] = RoundUp(radius);
     tree.ConeAxis[3 * size_t(v)] = static_cast<float>(cu.Axis.X);
     tree.ConeAxis[3 * size_t(v) + 1] = static_cast<float>(cu.Axis.Y);
@@ -542,7 +671,7 @@ MergeTree ComputeMergeTree(const TOMMesh& tom, const double* points, const uint1
     // Monotone error and depth: e_v needs its previous sibling (the last child
     // merged into u), its own last child, and for each row vertex n the last
     // child merged into n; events needing e_v pushed onto it before.
-    float error = std::max(RoundUp(nodeError), nv.PushError);
+    float error = std::max(RoundUp(std::max(nodeError, shadingError)), nv.PushError);
     uint32_t depth = nv.PushDepth; // saturated: see Node
     error = std::max(error, std::max(nu.ChildError, nv.ChildError));
     depth = std::max<uint32_t>(depth, std::max(nu.ChildDepth, nv.ChildDepth));
@@ -571,7 +700,9 @@ MergeTree ComputeMergeTree(const TOMMesh& tom, const double* points, const uint1
   // Roots bound their whole tree: their own node error and every child's.
   for (uint32_t w = 0; w < B; ++w)
   {
-    tree.Error[w] = std::max(RoundUp(node[w].Error), node[w].ChildError);
+    tree.Error[w] = std::max(RoundUp(std::max(node[w].Error,
+                               shadingWeight * node[w].Radius * shade[w].Deviation)),
+      node[w].ChildError);
     tree.Radius[w] = RoundUp(node[w].Radius);
     tree.ConeAxis[3 * size_t(w)] = static_cast<float>(cone[w].Axis.X);
     tree.ConeAxis[3 * size_t(w) + 1] = static_cast<float>(cone[w].Axis.Y);

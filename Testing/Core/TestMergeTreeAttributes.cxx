@@ -11,6 +11,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <random>
 #include <stdexcept>
 #include <vector>
 
@@ -289,6 +290,74 @@ TEST(MergeTreeAttributes, InvariantsOnClosedMeshes)
       check(root, root);
     }
   }
+}
+
+//------------------------------------------------------------------------------
+// The shading term counts normals that the coarse mesh cannot show: it only
+// raises errors (ties to the geometric error where interpolation reproduces
+// the normals, as on a smooth sphere) and dominates on a sphere with bumps too
+// small for the geometric error but not for shading. The monotone invariants
+// with it are checked by InvariantsOnClosedMeshes (default options).
+TEST(MergeTreeAttributes, ShadingErrorCountsLostNormals)
+{
+  tct::TriangleMesh bumpy = tct::MakeSphere(4);
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> noise(-1.0, 1.0);
+  for (size_t i = 0; i < bumpy.NumberOfPoints(); ++i)
+  {
+    const double f = 1.0 + 0.004 * noise(rng); // ~1/10 of an edge
+    for (int k = 0; k < 3; ++k)
+    {
+      bumpy.Points[3 * i + k] *= f;
+    }
+  }
+  double medians[2] = { 0.0, 0.0 };
+  int m = 0;
+  for (const tct::TriangleMesh& mesh : { tct::MakeSphere(4), bumpy })
+  {
+    const Built b = Build(mesh);
+    MergeTreeErrorOptions geometric;
+    geometric.ShadingWeight = 0.0;
+    const MergeTree plain = ComputeMergeTree(b.Mesh, b.Points.data(), nullptr, geometric);
+    const MergeTree shaded = ComputeMergeTree(b.Mesh, b.Points.data(), nullptr);
+    MergeTreeErrorOptions heavy;
+    heavy.ShadingWeight = 4.0;
+    const MergeTree heavier = ComputeMergeTree(b.Mesh, b.Points.data(), nullptr, heavy);
+    std::vector<double> ratio;
+    for (uint32_t v = 0; v < b.Mesh.GetNumberOfVertices(); ++v)
+    {
+      ASSERT_GE(shaded.Error[v], plain.Error[v]);
+      ASSERT_GE(heavier.Error[v], shaded.Error[v]);
+      // Everything but the errors is the same.
+      ASSERT_EQ(shaded.Radius[v], plain.Radius[v]);
+      ASSERT_EQ(shaded.Level[v], plain.Level[v]);
+      ASSERT_EQ(shaded.ConeCosine[v], plain.ConeCosine[v]);
+      if (v >= b.Mesh.BaseVertexCount && plain.Error[v] > 0.0f)
+      {
+        ratio.push_back(shaded.Error[v] / plain.Error[v]);
+      }
+    }
+    EXPECT_EQ(shaded.Dependencies, plain.Dependencies);
+    ASSERT_FALSE(ratio.empty());
+    std::nth_element(ratio.begin(), ratio.begin() + ratio.size() / 2, ratio.end());
+    medians[m++] = ratio[ratio.size() / 2];
+  }
+  EXPECT_LT(medians[0], 1.2) << "smooth sphere: interpolated normals are right";
+  EXPECT_GT(medians[1], 2.0) << "bumpy sphere: the coarse mesh loses the bumps' shading";
+}
+
+// Flat fan: normals all equal, so the shading term adds nothing.
+TEST(MergeTreeAttributes, ShadingErrorVanishesOnFlatSurface)
+{
+  const TOMMesh tom = tct::MakeFanTOM();
+  const std::vector<double> points = FanPoints(0.0);
+  MergeTreeErrorOptions options;
+  options.ShadingWeight = 10.0;
+  const MergeTree tree = ComputeMergeTree(tom, points.data(), nullptr, options);
+  EXPECT_FLOAT_EQ(tree.Error[4], 0.0f);
+  EXPECT_NEAR(tree.Error[3], std::sqrt(0.5), 1e-6);
+  options.ShadingWeight = -1.0;
+  EXPECT_THROW(ComputeMergeTree(tom, points.data(), nullptr, options), std::invalid_argument);
 }
 
 TEST(MergeTreeAttributes, Speed)
