@@ -194,13 +194,20 @@ TEST(MergeTreeAttributes, InvalidInputThrows)
 // On real TOMs: rows name live neighbours only, errors and levels are
 // monotone over every "split first" relation, radii and cones hold their
 // whole node.
-TEST(MergeTreeAttributes, InvariantsOnClosedMeshes)
+// With and without the shading term.
+class MergeTreeInvariants : public ::testing::TestWithParam<double>
 {
+};
+
+TEST_P(MergeTreeInvariants, OnClosedMeshes)
+{
+  MergeTreeErrorOptions options;
+  options.ShadingWeight = GetParam();
   for (const tct::TriangleMesh& mesh : ClosedMeshes())
   {
     const Built b = Build(mesh);
     const TOMMesh& tom = b.Mesh;
-    const MergeTree tree = ComputeMergeTree(tom, b.Points.data(), nullptr);
+    const MergeTree tree = ComputeMergeTree(tom, b.Points.data(), nullptr, options);
     const uint32_t n = tom.GetNumberOfVertices();
     const uint32_t base = tom.BaseVertexCount;
     const auto children = ChildrenOf(tom);
@@ -292,12 +299,14 @@ TEST(MergeTreeAttributes, InvariantsOnClosedMeshes)
   }
 }
 
+INSTANTIATE_TEST_SUITE_P(MergeTreeAttributes, MergeTreeInvariants, ::testing::Values(0.0, 1.0));
+
 //------------------------------------------------------------------------------
 // The shading term counts normals that the coarse mesh cannot show: it only
 // raises errors (ties to the geometric error where interpolation reproduces
 // the normals, as on a smooth sphere) and dominates on a sphere with bumps too
-// small for the geometric error but not for shading. The monotone invariants
-// with it are checked by InvariantsOnClosedMeshes (default options).
+// small for the geometric error but not for shading; with it the errors
+// stay monotone over every "split first" relation.
 TEST(MergeTreeAttributes, ShadingErrorCountsLostNormals)
 {
   tct::TriangleMesh bumpy = tct::MakeSphere(4);
@@ -319,7 +328,9 @@ TEST(MergeTreeAttributes, ShadingErrorCountsLostNormals)
     MergeTreeErrorOptions geometric;
     geometric.ShadingWeight = 0.0;
     const MergeTree plain = ComputeMergeTree(b.Mesh, b.Points.data(), nullptr, geometric);
-    const MergeTree shaded = ComputeMergeTree(b.Mesh, b.Points.data(), nullptr);
+    MergeTreeErrorOptions unit;
+    unit.ShadingWeight = 1.0;
+    const MergeTree shaded = ComputeMergeTree(b.Mesh, b.Points.data(), nullptr, unit);
     MergeTreeErrorOptions heavy;
     heavy.ShadingWeight = 4.0;
     const MergeTree heavier = ComputeMergeTree(b.Mesh, b.Points.data(), nullptr, heavy);
