@@ -29,6 +29,7 @@
  * errors.
  */
 #include "BenchmarkSupport.h"
+#include "MergeTreeAttributes.h"
 #include "TestMeshIO.h"
 #include "vtkMergeTreeBuilder.h"
 #include "vtkMergeTreeFieldData.h"
@@ -143,6 +144,8 @@ struct Settings
   int WarmupFrames = 3;
   int LoopLevels = 1;
   bool Rebuild = false;
+  /// Shading weight of the merge tree's errors (MergeTreeErrorOptions); < 0: the builder's.
+  double ShadingWeight = -1.0;
   bool Mixed = false;
   int MixedObjects = 529;
   int MixedFrames = 0;        ///< 0: Frames
@@ -171,6 +174,8 @@ void PrintUsage()
        "  --warmup N         untimed frames at the first camera before each policy (default 3)\n"
        "  --loop N           Loop subdivisions of igea (default 1: ~1.07M triangles)\n"
        "  --rebuild          rebuild the merge tree even when the cached .vtp matches\n"
+       "  --shading-weight W recompute the tree's errors with this MergeTreeErrorOptions::\n"
+       "                     ShadingWeight (default: the builder's errors, as cached)\n"
        "  --mixed            also W1's cow field with the object in front, vtkTimeCriticalRenderer\n"
        "  --mixed-objects N  cows of --mixed (default 529)\n"
        "  --mixed-frames N   frames of W1's path for --mixed (default: --frames)\n"
@@ -262,6 +267,10 @@ Settings ParseArguments(int argc, char* argv[])
     else if (arg == "--rebuild")
     {
       settings.Rebuild = true;
+    }
+    else if (arg == "--shading-weight")
+    {
+      settings.ShadingWeight = real(0.0);
     }
     else if (arg == "--mixed")
     {
@@ -540,6 +549,32 @@ LargeObject MakeLargeObject(const Settings& settings)
       std::cerr << "WARNING: cannot write the cache " << object.CachePath << "\n";
     }
     object.CacheSeconds = Seconds(write, Clock::now());
+  }
+  if (settings.ShadingWeight >= 0.0)
+  {
+    // The same tree with other errors (the cache keeps the builder's).
+    timecritical::MergeTreeErrorOptions options;
+    options.ShadingWeight = settings.ShadingWeight;
+    std::vector<double> points(3 * static_cast<size_t>(object.Tree->GetNumberOfPoints()));
+    for (vtkIdType i = 0; i < object.Tree->GetNumberOfPoints(); ++i)
+    {
+      object.Tree->GetPoint(i, &points[3 * static_cast<size_t>(i)]);
+    }
+    const timecritical::MergeTree tree = timecritical::ComputeMergeTree(
+      check->GetMesh(), points.data(), check->GetTree().Level.data(), options);
+    vtkDataArray* error =
+      object.Tree->GetPointData()->GetArray(vtkMergeTreeFieldData::ErrorArrayName());
+    if (!error || error->GetNumberOfTuples() != static_cast<vtkIdType>(tree.Error.size()))
+    {
+      throw std::runtime_error("--shading-weight: the tree has no matching error array");
+    }
+    for (vtkIdType i = 0; i < error->GetNumberOfTuples(); ++i)
+    {
+      error->SetComponent(i, 0, tree.Error[static_cast<size_t>(i)]);
+    }
+    error->Modified();
+    object.Tree->Modified();
+    object.Source += ", errors with shading weight " + std::to_string(settings.ShadingWeight);
   }
   object.Triangles = object.Tree->GetNumberOfPolys();
   object.Vertices = check->GetNumberOfVertices();
