@@ -312,6 +312,7 @@ MergeTree ComputeMergeTree(const TOMMesh& tom, const double* points, const uint1
     throw std::invalid_argument("ComputeMergeTree: ShadingWeight must be finite and >= 0");
   }
   const double shadingWeight = options.ShadingWeight;
+  const bool shading = shadingWeight > 0.0;
   const std::string problem = TOMValidator::Check(tom);
   if (!problem.empty())
   {
@@ -497,8 +498,11 @@ MergeTree ComputeMergeTree(const TOMMesh& tom, const double* points, const uint1
       Prefetch(&node[S[w]]);
       Prefetch(&cone[w]);
       Prefetch(&cone[S[w]]);
-      Prefetch(&shade[w]);
-      Prefetch(&shade[S[w]]);
+      if (shading)
+      {
+        Prefetch(&shade[w]);
+        Prefetch(&shade[S[w]]);
+      }
     }
     if (v >= B + 3)
     {
@@ -527,8 +531,11 @@ MergeTree ComputeMergeTree(const TOMMesh& tom, const double* points, const uint1
           const uint32_t k = f[i] % 3;
           Prefetch(&node[r.Cur[Succ[k]]]);
           Prefetch(&node[r.Cur[Pred[k]]]);
-          Prefetch(&shade[r.Cur[Succ[k]]]);
-          Prefetch(&shade[r.Cur[Pred[k]]]);
+          if (shading)
+          {
+            Prefetch(&shade[r.Cur[Succ[k]]]);
+            Prefetch(&shade[r.Cur[Pred[k]]]);
+          }
         }
       }
     }
@@ -630,38 +637,42 @@ MergeTree ComputeMergeTree(const TOMMesh& tom, const double* points, const uint1
 
     // Shading: the renderer interpolates the display vertices' own
     // (full-resolution) normals, so where v was, it now shows the normals of
-    // u, a, b mixed at v's nearest point of the new fan (smooth curvature and
-    // creases kept by the collapse are reproduced; a lost bump is not). The
-    // angle between that and v's normal is the local normal error, summed
-    // over the children like the geometric error (the triangle inequality on
-    // the sphere, as the normals shown near earlier merged vertices move with
-    // this change).
-    Shade& su = shade[u];
-    const Shade& sv = shade[v];
-    const Vec nuN = { su.N[0], su.N[1], su.N[2] };
-    const Vec nvN = { sv.N[0], sv.N[1], sv.N[2] };
-    double localAngle = Angle(nuN, nvN);
-    if (nearA != None)
+    // u, a, b mixed at v's nearest point of the new fan (smooth curvature is
+    // reproduced; a lost bump is not). The angle between that and v's normal
+    // is the local normal error, summed over the children like the geometric
+    // error: the normals shown near earlier merged vertices move with this
+    // change too. Skipped (no cost) without a shading weight.
+    double shadingError = 0.0;
+    if (shading)
     {
-      const Vec w = ClosestWeights(pv, pu, P(nearA), P(nearB));
-      const Shade& sa = shade[nearA];
-      const Shade& sb = shade[nearB];
-      const Vec shown = { w.X * nuN.X + w.Y * sa.N[0] + w.Z * sb.N[0],
-        w.X * nuN.Y + w.Y * sa.N[1] + w.Z * sb.N[1], w.X * nuN.Z + w.Y * sa.N[2] + w.Z * sb.N[2] };
-      const double len = Norm(shown);
-      if (len > 1e-12)
+      Shade& su = shade[u];
+      const Shade& sv = shade[v];
+      const Vec nuN = { su.N[0], su.N[1], su.N[2] };
+      const Vec nvN = { sv.N[0], sv.N[1], sv.N[2] };
+      double localAngle = Angle(nuN, nvN);
+      if (nearA != None)
       {
-        localAngle = Angle(nvN, { shown.X / len, shown.Y / len, shown.Z / len });
+        const Vec w = ClosestWeights(pv, pu, P(nearA), P(nearB));
+        const Shade& sa = shade[nearA];
+        const Shade& sb = shade[nearB];
+        const Vec shown = { w.X * nuN.X + w.Y * sa.N[0] + w.Z * sb.N[0],
+          w.X * nuN.Y + w.Y * sa.N[1] + w.Z * sb.N[1],
+          w.X * nuN.Z + w.Y * sa.N[2] + w.Z * sb.N[2] };
+        const double len = Norm(shown);
+        if (len > 1e-12)
+        {
+          localAngle = Angle(nvN, { shown.X / len, shown.Y / len, shown.Z / len });
+        }
       }
+      const double deviation =
+        std::min(std::max<double>(su.Deviation, sv.Deviation) + localAngle, Pi);
+      su.Deviation = static_cast<float>(deviation);
+      // As a length: a normal tilted by that angle over the node's radius is
+      // a tangent plane whose rim moves by about radius * angle, so its
+      // projection in pixels grows with the node's projected size, as the
+      // node's share of a squared image error does.
+      shadingError = shadingWeight * radius * deviation;
     }
-    const double deviation =
-      std::min(std::max<double>(su.Deviation, sv.Deviation) + localAngle, Pi);
-    su.Deviation = static_cast<float>(deviation);
-    // Shading error as a length: a deviation of the normal by an angle over
-    // the node's radius is the height a tangent plane tilted by that angle
-    // gains over the node, so its projection in pixels grows with the node's
-    // projected size, as the node's share of a squared image error does.
-    const double shadingError = shadingWeight * radius * deviation;
     tree.Radius[v] = RoundUp(radius);
     tree.ConeAxis[3 * size_t(v)] = static_cast<float>(cu.Axis.X);
     tree.ConeAxis[3 * size_t(v) + 1] = static_cast<float>(cu.Axis.Y);
