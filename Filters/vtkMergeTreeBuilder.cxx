@@ -19,6 +19,7 @@ vtkStandardNewMacro(vtkMergeTreeBuilder);
 
 vtkMergeTreeBuilder::vtkMergeTreeBuilder()
   : LevelCostRatio(timecritical::MergeTreeBuildOptions().LevelCostRatio)
+  , ShadingWeight(timecritical::MergeTreeErrorOptions().ShadingWeight)
 {
 }
 vtkMergeTreeBuilder::~vtkMergeTreeBuilder() = default;
@@ -53,6 +54,15 @@ void vtkMergeTreeBuilder::SetLevelCostRatio(double ratio)
 {
   if (timecritical::SetClampedSetting(this, "LevelCostRatio", ratio, 0.0,
         std::numeric_limits<double>::max(), this->LevelCostRatio))
+  {
+    this->Modified();
+  }
+}
+
+void vtkMergeTreeBuilder::SetShadingWeight(double weight)
+{
+  if (timecritical::SetClampedSetting(this, "ShadingWeight", weight, 0.0,
+        std::numeric_limits<double>::max(), this->ShadingWeight))
   {
     this->Modified();
   }
@@ -96,6 +106,7 @@ int vtkMergeTreeBuilder::RequestData(
   timecritical::MergeTreeBuildOptions options;
   timecritical::SetCollapseOptions(this, options.Collapse);
   options.LevelCostRatio = this->LevelCostRatio;
+  options.Errors.ShadingWeight = this->ShadingWeight;
 
   timecritical::MergeTreeBuildResult result;
   try
@@ -138,6 +149,7 @@ void vtkMergeTreeBuilder::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MaximumNormalDeviation: " << this->MaximumNormalDeviation << "\n";
   os << indent << "MinimumTriangleQuality: " << this->MinimumTriangleQuality << "\n";
   os << indent << "LevelCostRatio: " << this->LevelCostRatio << "\n";
+  os << indent << "ShadingWeight: " << this->ShadingWeight << "\n";
   os << indent << "NumberOfDroppedCells: " << this->NumberOfDroppedCells << "\n";
   os << indent << "NumberOfMergedPoints: " << this->NumberOfMergedPoints << "\n";
   os << indent << "LevelCount: " << this->LevelCount << "\n";

@@ -87,6 +87,19 @@ public:
   ///@}
 
   ///@{
+  /**
+   * Weight of the shading error in each node's error
+   * (timecritical::MergeTreeErrorOptions::ShadingWeight): lost normal
+   * variation times the node's radius counts like a geometric displacement,
+   * so that a 1-pixel front also keeps the shading of fine bumps (on a
+   * scanned face: 45 dB instead of 36 dB against the full mesh, for 7.6%
+   * instead of 2.3% of the triangles). 0: geometric error only. Default 1, >= 0.
+   */
+  void SetShadingWeight(double weight);
+  vtkGetMacro(ShadingWeight, double);
+  ///@}
+
+  ///@{
   /// Statistics of the last build.
   vtkGetMacro(NumberOfDroppedCells, vtkIdType);
   vtkGetMacro(NumberOfMergedPoints, vtkIdType);
@@ -107,6 +120,7 @@ protected:
   double MaximumNormalDeviation = 90.0;
   double MinimumTriangleQuality = 0.0;
   double LevelCostRatio; // the core's default (constructor)
+  double ShadingWeight;  // the core's default (constructor)
   vtkIdType NumberOfDroppedCells = 0;
   vtkIdType NumberOfMergedPoints = 0;
   int LevelCount = 0;

@@ -32,8 +32,10 @@ struct MergeTree
   std::vector<uint16_t> Level;
   uint16_t LevelCount = 0;
 
-  /// Geometric error (world units) of the node: the largest distance between the
-  /// original surface of its subtree and its simplified surface, never smaller
+  /// Error (world units) of the node: the geometric error (distance between the
+  /// original surface of its subtree and its simplified surface) or, with a
+  /// shading weight (MergeTreeErrorOptions), the larger of it and the shading
+  /// error (lost normal variation times the node's radius); never smaller
   /// than the error of any event that must be split before it (monotone), so
   /// the projected error decides splits and merges alike (downswitch = upswitch).
   std::vector<float> Error;

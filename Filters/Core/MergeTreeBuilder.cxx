@@ -550,7 +550,7 @@ MergeTreeBuildResult MergeTreeBuilder::Build(const double* points, size_t number
     std::copy_n(points + 3 * static_cast<size_t>(result.TOM.VertexOrder[v]), 3,
       positions.begin() + 3 * static_cast<std::ptrdiff_t>(v));
   }
-  result.Tree = ComputeMergeTree(tom, positions.data(), levels.data());
+  result.Tree = ComputeMergeTree(tom, positions.data(), levels.data(), this->Options.Errors);
   return result;
 }
 }

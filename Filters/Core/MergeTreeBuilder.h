@@ -3,6 +3,7 @@
 #define timecritical_MergeTreeBuilder_h
 
 #include "MergeTree.h"
+#include "MergeTreeAttributes.h"
 #include "TOMBuilder.h"
 #include "TimeCriticalFiltersCoreExport.h"
 
@@ -16,6 +17,9 @@ struct MergeTreeBuildOptions
 {
   /// Quadrics, boundary and feature handling, normal-flip and sliver checks, progress.
   TOMBuildOptions Collapse;
+
+  /// How node errors are measured (shading term).
+  MergeTreeErrorOptions Errors;
 
   /**
    * The cost cap of a level, which makes the collapse sequence follow the

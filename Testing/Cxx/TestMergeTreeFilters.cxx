@@ -269,14 +269,53 @@ TEST(vtkMergeTreeBuilder, LevelCostRatioTradesLevelsForAccuracy)
   EXPECT_EQ(builder->GetLevelCostRatio(), 0.0); // clamped
   // The paper's maximal levels (0) give a shallower tree than the capped default.
   auto input = MakeSphere(40);
-  auto maximal = BuildTree(input, builder);
-  const int maximalLevels = builder->GetLevelCount();
-  builder->SetLevelCostRatio(2.0);
-  auto capped = BuildTree(input, builder);
-  EXPECT_GT(builder->GetLevelCount(), maximalLevels);
   vtkNew<vtkMergeTreeFieldData> reader;
-  ASSERT_TRUE(reader->Read(maximal)) << reader->GetErrorMessage();
-  ASSERT_TRUE(reader->Read(capped)) << reader->GetErrorMessage();
+  ASSERT_TRUE(reader->Read(BuildTree(input, builder))) << reader->GetErrorMessage();
+  const int maximalLevels = builder->GetLevelCount();
+  EXPECT_EQ(reader->GetLevelCount(), maximalLevels);
+  builder->SetLevelCostRatio(2.0);
+  ASSERT_TRUE(reader->Read(BuildTree(input, builder))) << reader->GetErrorMessage();
+  EXPECT_GT(builder->GetLevelCount(), maximalLevels);
+  EXPECT_EQ(reader->GetLevelCount(), builder->GetLevelCount());
+}
+
+TEST(vtkMergeTreeBuilder, ShadingWeightRaisesErrorsOnly)
+{
+  vtkNew<vtkMergeTreeBuilder> builder;
+  MessageLog log(builder);
+  EXPECT_EQ(builder->GetShadingWeight(), 1.0);
+  builder->SetShadingWeight(std::numeric_limits<double>::quiet_NaN());
+  EXPECT_EQ(log.Errors.size(), 1u);
+  EXPECT_EQ(builder->GetShadingWeight(), 1.0);
+  // Bumps much finer than the sphere: their normals vary far more than
+  // their height, which only the shading term counts.
+  auto input = MakeSphere(80);
+  vtkPoints* points = input->GetPoints();
+  for (vtkIdType p = 0; p < points->GetNumberOfPoints(); ++p)
+  {
+    double x[3];
+    points->GetPoint(p, x);
+    const double bump = 1.0 + 0.004 * std::sin(80.0 * x[0]) * std::sin(80.0 * x[1]);
+    points->SetPoint(p, bump * x[0], bump * x[1], bump * x[2]);
+  }
+  // (The builder's output object is reused: read each tree right after its build.)
+  vtkNew<vtkMergeTreeFieldData> reader;
+  builder->SetShadingWeight(0.0);
+  ASSERT_TRUE(reader->Read(BuildTree(input, builder))) << reader->GetErrorMessage();
+  const std::vector<float> geometricErrors = reader->GetTree().Error;
+  const std::vector<uint32_t> geometricRows = reader->GetTree().Dependencies;
+  builder->SetShadingWeight(1.0);
+  ASSERT_TRUE(reader->Read(BuildTree(input, builder))) << reader->GetErrorMessage();
+  const std::vector<float>& shadedErrors = reader->GetTree().Error;
+  ASSERT_EQ(shadedErrors.size(), geometricErrors.size());
+  EXPECT_EQ(reader->GetTree().Dependencies, geometricRows); // same tree
+  size_t larger = 0;
+  for (size_t v = 0; v < shadedErrors.size(); ++v)
+  {
+    EXPECT_GE(shadedErrors[v], geometricErrors[v]) << v;
+    larger += shadedErrors[v] > geometricErrors[v];
+  }
+  EXPECT_GT(larger, 0u);
 }
 
 TEST(vtkMergeTreeBuilder, SliverAvoidanceKeepsAValidTree)
