@@ -1169,7 +1169,11 @@ void vtkMultiresolutionPolyDataMapper::RefineObjects(vtkRenderer* ren, vtkActor*
     const auto start = std::chrono::steady_clock::now();
     const timecritical::RefinementStatistics& statistics = this->RefinementMode == FIXED_ACCURACY
       ? front.UpdateFixedAccuracy()
-      : front.UpdateBudget(static_cast<uint32_t>(std::max(budget, 0.0)));
+      // The step keeps the work near the limit; the core's own deadline
+      // (twice the limit, at least 2 ms so that every update makes progress)
+      // stops what the measured rate did not foresee.
+      : front.UpdateBudget(static_cast<uint32_t>(std::max(budget, 0.0)),
+          limit > 0.0 ? std::max(2.0 * limit, 2e-3) : 0.0);
     object.RefinementTime =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const double operations = static_cast<double>(statistics.Splits) + statistics.Merges;
