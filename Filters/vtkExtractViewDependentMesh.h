@@ -109,7 +109,8 @@ public:
   ///@}
 
   ///@{
-  /// Near silhouettes, multiply the threshold by SilhouetteFactor, in [0.01, 1]. Default off, 0.25.
+  /// Near silhouettes, multiply the threshold by SilhouetteFactor, in [0.01, 1]. Default on, 0.25
+  /// (as vtkMultiresolutionPolyDataMapper and vtkTimeCriticalRenderer).
   vtkSetMacro(SilhouetteRefinement, bool);
   vtkGetMacro(SilhouetteRefinement, bool);
   vtkBooleanMacro(SilhouetteRefinement, bool);
@@ -118,7 +119,8 @@ public:
   ///@}
 
   ///@{
-  /// Near highlights, multiply the threshold by HighlightFactor, in [0.01, 1]. Default off, 0.25.
+  /// Near highlights, multiply the threshold by HighlightFactor, in [0.01, 1]. Default on, 0.5
+  /// (as vtkMultiresolutionPolyDataMapper and vtkTimeCriticalRenderer).
   vtkSetMacro(HighlightRefinement, bool);
   vtkGetMacro(HighlightRefinement, bool);
   vtkBooleanMacro(HighlightRefinement, bool);
@@ -184,10 +186,10 @@ protected:
   double LightDirection[3] = { 0.0, 0.0, 1.0 };
   bool BackFaceSimplification = true;
   bool FrustumCulling = true;
-  bool SilhouetteRefinement = false;
+  bool SilhouetteRefinement = true;
   double SilhouetteFactor = 0.25;
-  bool HighlightRefinement = false;
-  double HighlightFactor = 0.25;
+  bool HighlightRefinement = true;
+  double HighlightFactor = 0.5;
   int RefinementMode = FIXED_ACCURACY;
   vtkIdType TriangleBudget = 10000;
   bool GenerateLocalLevels = false;

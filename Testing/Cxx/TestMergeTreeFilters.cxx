@@ -967,6 +967,12 @@ TEST(vtkExtractViewDependentMesh, SilhouetteAndHighlightRefinementAddDetail)
   extract->SetInputData(SphereTree());
   LookAt(extract->GetCamera(), 0, 0, 3);
   extract->SetPixelThreshold(4.0);
+  // Both on by default, as in the mapper and the renderer.
+  EXPECT_TRUE(extract->GetSilhouetteRefinement());
+  EXPECT_TRUE(extract->GetHighlightRefinement());
+  EXPECT_EQ(extract->GetHighlightFactor(), 0.5);
+  extract->SilhouetteRefinementOff();
+  extract->HighlightRefinementOff();
   const vtkIdType plain = Triangles(extract);
   const double towardsEye[3] = { 0, 0, 1 };
   const int plainAtCentre = TrianglesAround(extract->GetOutput(), towardsEye, 20.0);

@@ -263,13 +263,19 @@ class PluginFilters(unittest.TestCase):
         self.assertEqual(self.tree_proxy.PreserveBoundaries, 1)
         self.assertEqual(self.tree_proxy.FeatureAngle, 45.0)
         self.assertEqual(self.tree_proxy.MinimumTriangleQuality, 0.0)
+        self.assertEqual(self.tree_proxy.LevelCostRatio, 2.0)
+        self.assertEqual(self.tree_proxy.ShadingWeight, 1.0)
         extract = self.new(ExtractViewDependentMesh(Input=self.tree_proxy))
         self.assertEqual(list(extract.ViewportSize), [512, 512])
         self.assertEqual(extract.PixelThreshold, 1.0)
         self.assertEqual(extract.CameraViewAngle, 30.0)
         self.assertEqual(extract.RefinementMode, "Fixed Accuracy")
         self.assertEqual(extract.BackFaceSimplification, 1)
-        self.assertEqual(extract.SilhouetteRefinement, 0)
+        # Silhouette and highlight refinement as in the mapper and the renderer.
+        self.assertEqual(extract.SilhouetteRefinement, 1)
+        self.assertEqual(extract.SilhouetteFactor, 0.25)
+        self.assertEqual(extract.HighlightRefinement, 1)
+        self.assertEqual(extract.HighlightFactor, 0.5)
 
     def test_tree(self):
         tree = self.fetch(self.tree_proxy)
