@@ -359,6 +359,14 @@ void ViewDependentRefinement::PrepareView()
     const double angle = std::min(179.0, std::max(1e-3, v.ViewAngle)) * Pi / 180.0;
     this->PixelsPerUnit = height / (2.0 * std::tan(0.5 * angle));
   }
+  // Smallest threshold factor any node can get (SurelyUnwanted()).
+  const double silhouette = this->SilhouetteRefinement ? this->SilhouetteFactor : 1.0;
+  const double highlight = this->HighlightRefinement ? this->HighlightFactor : 1.0;
+  this->MinimumFactor =
+    std::min(std::min(1.0, silhouette * highlight), std::min(silhouette, highlight));
+  this->UnwantedScale = this->MinimumFactor > 0.0 && this->PixelThreshold > 0.0
+    ? this->PixelsPerUnit / (this->MinimumFactor * this->PixelThreshold * (1.0 - 1e-6))
+    : 0.0;
 }
 
 //------------------------------------------------------------------------------
@@ -457,6 +465,49 @@ double ViewDependentRefinement::Priority(uint32_t v) const
   return factor > 0.0 ? projected / factor : std::numeric_limits<double>::infinity();
 }
 
+
+bool ViewDependentRefinement::SurelyUnwanted(uint32_t v) const
+{
+  // Wanted(v) is false when even the smallest threshold factor leaves the
+  // projected error below the threshold, whatever the culling: Priority() is
+  // projected / factor with projected = Error * PixelsPerUnit / max(dist - r,
+  // near) (perspective). Decided without a square root, against the
+  // threshold shrunk by a relative 1e-6, far more than the rounding of
+  // Priority() and of its float key, so that this never contradicts Wanted().
+  if (!(this->MinimumFactor > 0.0) || !(this->PixelThreshold > 0.0))
+  {
+    return false;
+  }
+  const Node& node = this->Nodes[v];
+  const double error = node.Error;
+  if (!(error > 0.0))
+  {
+    return true; // priority 0 or culled
+  }
+  // projected / factor <= tau' <=> Error * PixelsPerUnit / (MinimumFactor tau') <= max(dist - r, near)
+  const double reach = error * this->UnwantedScale;
+  if (this->View.Parallel)
+  {
+    return reach <= 1.0;
+  }
+  const double r = node.Radius;
+  const double nearPlane = this->View.NearDistance > 0.0
+    ? this->View.NearDistance
+    : 1e-3 * std::max(r, error);
+  if (reach <= nearPlane)
+  {
+    return true;
+  }
+  if (reach < 1e-4 * r)
+  {
+    return false; // dist - r would cancel too much in Priority() for this margin
+  }
+  const double dx = node.Center[0] - this->EyeX;
+  const double dy = node.Center[1] - this->EyeY;
+  const double dz = node.Center[2] - this->EyeZ;
+  const double limit = reach + r; // dist >= reach + r
+  return dx * dx + dy * dy + dz * dz >= limit * limit;
+}
 
 void ViewDependentRefinement::NextFrame()
 {
@@ -819,12 +870,15 @@ void ViewDependentRefinement::MergeUnwanted()
   // Finest first: whatever needs a vertex is finer (larger id), so it has
   // been merged or kept before the vertex is looked at, and one pass reaches
   // the fixed point. A merge only releases coarser vertices (pushed here).
+  // Only what is mergeable now is queued (CanMerge() first: it is O(1) and
+  // spares most priorities): whatever becomes mergeable later is released by
+  // a merge here and pushed then.
   uint32_t* queue = this->MergeQueue.data();
   this->MergeQueueSize = 0;
   for (uint32_t i = 0; i < this->MergeListSize; ++i)
   {
     const uint32_t x = this->MergeList[i];
-    if (!this->Wanted(x))
+    if (this->CanMerge(x) && !this->Wanted(x))
     {
       this->Queued[x] = this->Frame;
       queue[this->MergeQueueSize++] = x;
@@ -864,9 +918,16 @@ const RefinementStatistics& ViewDependentRefinement::UpdateFixedAccuracy()
   // the splits it needs; each split offers its new candidates.
   this->Mode = UpdateMode::Fixed;
   this->WorkSize = 0;
+  // The candidates (next child of each display vertex) are decided here, in
+  // list order; only the wanted ones are kept (the view alone decides, so
+  // this is what the lazy check at the pop would find).
   for (uint32_t i = 0; i < this->SplitListSize; ++i)
   {
-    this->Work[this->WorkSize++] = this->NextChild(this->SplitList[i]);
+    const uint32_t c = this->NextChild(this->SplitList[i]);
+    if (c != None && !this->SurelyUnwanted(c) && this->Wanted(c))
+    {
+      this->Work[this->WorkSize++] = c;
+    }
   }
   while (this->WorkSize > 0)
   {

@@ -214,6 +214,8 @@ private:
   /// Priority(v), computed once per update.
   float Key(uint32_t v);
   bool Wanted(uint32_t v);
+  /// Conservative, cheap: true only when Wanted(v) is false (whatever the culling).
+  bool SurelyUnwanted(uint32_t v) const;
   void Split(uint32_t v);
   void Merge(uint32_t v);
   /// Splits v and, first, every split it needs. Returns false when blocked.
@@ -323,6 +325,8 @@ private:
   double DirX = 0, DirY = 0, DirZ = -1;
   double LightX = 0, LightY = 0, LightZ = 1;
   double PixelsPerUnit = 1.0; // parallel: per world unit; perspective: times distance
+  double MinimumFactor = 1.0; // smallest threshold factor (silhouette, highlight)
+  double UnwantedScale = 0.0; // PixelsPerUnit / (MinimumFactor * tau * (1 - 1e-6)); 0: none
 
   RefinementStatistics Statistics;
 };

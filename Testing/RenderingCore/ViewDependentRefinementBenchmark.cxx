@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // ViewDependentRefinementBenchmark [mesh] [--json FILE] [--loop N] [--w2-only]
-// [--limit SECONDS]: on an orbit around the mesh (igea by default): the
+// [--w2-fixed] [--limit SECONDS]: on an orbit around the mesh (igea by default): the
 // display triangle fraction at tau = 1 px, 512 x 512, the share of forced
 // splits (fronts from scratch), what back-face simplification and a
 // half-space frustum save, the incremental fixed-accuracy and budget update
@@ -12,7 +12,9 @@
 // degrees and up to 10% zoom per frame, budgets moving by 5-20% per frame
 // within 50-120K triangles; budget update times unbounded and with a work
 // bound of --limit seconds (default 5 ms). Under callgrind
-// (--instr-atstart=no) only the unbounded W2-like updates are instrumented.
+// (--instr-atstart=no) only the unbounded W2-like budget updates are
+// instrumented, or with --w2-fixed (implies --w2-only) the fixed-accuracy
+// updates at tau = 1 px on the same camera path (also timed with --w2-only).
 #include "MergeTreeAttributes.h"
 #include "TOMBuilder.h"
 #include "TestMeshIO.h"
@@ -150,6 +152,7 @@ int main(int argc, char** argv)
   std::string json;
   int loops = 0;
   bool w2Only = false;
+  bool w2Fixed = false;
   double limit = 0.005;
   for (int i = 1; i < argc; ++i)
   {
@@ -169,6 +172,11 @@ int main(int argc, char** argv)
     else if (a == "--w2-only")
     {
       w2Only = true;
+    }
+    else if (a == "--w2-fixed")
+    {
+      w2Only = true;
+      w2Fixed = true;
     }
     else
     {
@@ -289,10 +297,56 @@ int main(int argc, char** argv)
       f.Triangles, f.Operations, 1e3 * f.Median, 1e3 * f.Mean, 1e3 * f.Worst, 100 * f.Lag);
     return f;
   };
+  // The same path with fixed-accuracy updates at tau = 1 px (W2's front).
+  auto runW2Fixed = [&](bool instrument) {
+    uint64_t state = 12345;
+    auto uniform = [&state]() {
+      state = state * 6364136223846793005ull + 1442695040888963407ull;
+      return double(state >> 11) * (1.0 / 9007199254740992.0);
+    };
+    double angle = 0, zoom = 1.0;
+    vdr.SetPixelThreshold(1.0);
+    vdr.SetBackFaceSimplification(true);
+    vdr.Reset();
+    vdr.SetView(orbit(angle, zoom, 512));
+    vdr.UpdateFixedAccuracy(); // warm-up: the first front
+    std::vector<double> times;
+    W2Figures f;
+    for (int i = 0; i < w2Frames; ++i)
+    {
+      angle += (3.0 + 2.0 * uniform()) * pi / 180;
+      zoom = std::min(1.6, std::max(0.5, zoom * (1.0 + 0.1 * (2 * uniform() - 1))));
+      uniform(); // the budget draws of runW2: same camera path
+      uniform();
+      vdr.SetView(orbit(angle, zoom, 512));
+      if (instrument)
+      {
+        CALLGRIND_START_INSTRUMENTATION;
+      }
+      const RefinementStatistics& s = vdr.UpdateFixedAccuracy();
+      if (instrument)
+      {
+        CALLGRIND_STOP_INSTRUMENTATION;
+      }
+      times.push_back(s.Seconds);
+      f.Triangles += s.DisplayTriangles;
+      f.Operations += s.Splits + s.Merges;
+    }
+    f.Median = median(times);
+    f.Mean = std::accumulate(times.begin(), times.end(), 0.0) / w2Frames;
+    f.Worst = *std::max_element(times.begin(), times.end());
+    f.Triangles /= w2Frames;
+    f.Operations /= w2Frames;
+    std::printf("W2-like fixed-accuracy updates (tau 1 px): %.0f display triangles, %.0f splits + "
+                "merges per frame, median %.3f ms, mean %.3f ms, worst %.3f ms\n",
+      f.Triangles, f.Operations, 1e3 * f.Median, 1e3 * f.Mean, 1e3 * f.Worst);
+    return f;
+  };
   if (w2Only)
   {
     std::printf("%s: %u triangles\n", path.c_str(), full);
-    runW2(0.0, true);
+    runW2Fixed(w2Fixed);
+    runW2(0.0, !w2Fixed);
     if (limit > 0)
     {
       runW2(limit, false);
@@ -392,6 +446,7 @@ int main(int argc, char** argv)
               "ms, worst %.3f ms per frame\n",
     budget, tau, budgetTriangles / frames, 1e3 * budgetMedian, 1e3 * budgetMean,
     1e3 * budgetWorst);
+  runW2Fixed(false);
   const W2Figures w2 = runW2(0.0, false);
   const W2Figures w2Bounded = limit > 0 ? runW2(limit, false) : W2Figures{};
   if (!json.empty())
