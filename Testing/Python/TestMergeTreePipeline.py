@@ -18,7 +18,6 @@ TIMECRITICAL_TEST_OUTPUT_DIR receives scratch files.
 
 import os
 import sys
-import tempfile
 import unittest
 
 import numpy as np
@@ -37,11 +36,7 @@ from vtkmodules.vtkRenderingCore import vtkCamera
 from timecritical import (vtkExtractViewDependentMesh, vtkMergeTreeBuilder,
                           vtkMergeTreeFieldData)
 
-PLUGIN = os.environ.get("TIMECRITICAL_PLUGIN", "")
-SHARED_DATA_DIR = os.environ.get(
-    "TIMECRITICAL_SHARED_DATA_DIR",
-    os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..", "shared", "data"))
-COW = os.path.join(SHARED_DATA_DIR, "cow.obj")
+from timecritical_testing import COW, load_plugin, output_dir  # noqa: E402
 
 POINT_ARRAYS = ("TOMSubstitution", "MergeTreeLevel", "MergeTreeError", "MergeTreeRadius",
                 "MergeTreeConeAxis", "MergeTreeConeCosine")
@@ -49,25 +44,8 @@ FIELD_ARRAYS = ("TOMCounts", "TOMErrorCurve", "MergeTreeDependencyOffsets",
                 "MergeTreeDependencies", "MergeTreeLevelCount")
 
 
-def load_plugin():
-    if not PLUGIN or not os.path.isfile(PLUGIN):
-        sys.stderr.write("TIMECRITICAL_PLUGIN must name the built TimeCritical.so "
-                         "(<build>/lib/paraview-plugins/TimeCritical/TimeCritical.so); got %r\n"
-                         % PLUGIN)
-        sys.exit(1)
-    LoadPlugin(PLUGIN, remote=False, ns=globals())
-    for name in ("BuildMergeTree", "ExtractViewDependentMesh"):
-        if name not in globals():
-            sys.stderr.write("LoadPlugin(%s) did not define %s\n" % (PLUGIN, name))
-            sys.exit(1)
 
 
-def output_dir():
-    folder = os.environ.get("TIMECRITICAL_TEST_OUTPUT_DIR")
-    if folder:
-        os.makedirs(folder, exist_ok=True)
-        return tempfile.mkdtemp(prefix="TestMergeTreePipeline-", dir=folder)
-    return tempfile.mkdtemp(prefix="TestMergeTreePipeline-")
 
 
 def merge_tree_arrays(data):
@@ -172,7 +150,7 @@ class WrappedClasses(unittest.TestCase):
         self.assertTrue(np.all(np.abs(a["MergeTreeConeCosine"]) <= 1))
 
     def test_binary_vtp_round_trip(self):
-        path = os.path.join(output_dir(), "sphere-merge-tree.vtp")
+        path = os.path.join(output_dir('TestMergeTreePipeline'), "sphere-merge-tree.vtp")
         writer = vtkXMLPolyDataWriter()
         writer.SetFileName(path)
         writer.SetInputData(self.tree)
@@ -319,7 +297,7 @@ class PluginFilters(unittest.TestCase):
         self.assertGreater(budget, 400)
 
     def test_save_binary_and_extract_again(self):
-        path = os.path.join(output_dir(), "plugin-merge-tree.vtp")
+        path = os.path.join(output_dir('TestMergeTreePipeline'), "plugin-merge-tree.vtp")
         SaveData(path, proxy=self.tree_proxy, DataMode="Binary")
         reader = self.new(XMLPolyDataReader(FileName=[path]))
         expected = merge_tree_arrays(self.fetch(self.tree_proxy))
@@ -356,6 +334,6 @@ class PluginFilters(unittest.TestCase):
 
 
 if __name__ == "__main__":
-    load_plugin()
+    load_plugin(globals(), ('BuildMergeTree', 'ExtractViewDependentMesh'))
     result = unittest.main(argv=[sys.argv[0]], verbosity=2, exit=False).result
     sys.exit(0 if result.wasSuccessful() else 1)

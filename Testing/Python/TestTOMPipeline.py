@@ -16,7 +16,6 @@ otherwise). Rendering needs an X display (run under xvfb-run -a).
 import math
 import os
 import sys
-import tempfile
 import unittest
 
 import numpy as np
@@ -41,18 +40,9 @@ from vtkmodules.vtkFiltersSources import vtkSphereSource
 from vtkmodules.vtkIOGeometry import vtkOBJReader
 from vtkmodules.vtkIOXML import vtkXMLPolyDataReader, vtkXMLPolyDataWriter
 
-SHARED_DATA_DIR = os.environ.get(
-    "TIMECRITICAL_SHARED_DATA_DIR",
-    os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..", "shared", "data"))
-COW = os.path.join(SHARED_DATA_DIR, "cow.obj")
+from timecritical_testing import COW, output_dir  # noqa: E402
 
 
-def output_dir():
-    folder = os.environ.get("TIMECRITICAL_TEST_OUTPUT_DIR")
-    if folder:
-        os.makedirs(folder, exist_ok=True)
-        return tempfile.mkdtemp(prefix="TestTOMPipeline-", dir=folder)
-    return tempfile.mkdtemp(prefix="TestTOMPipeline-")
 
 
 # ---------------------------------------------------------------------------
@@ -472,7 +462,7 @@ class TOMChecks:
                 rtol=1e-5, atol=1e-5, err_msg="geomorphed normal at factor %g" % factor)
 
     def test_vtp_roundtrip(self):
-        folder = output_dir()
+        folder = output_dir('TestTOMPipeline')
         for mode in ("default", "ascii", "binary"):
             with self.subTest(mode=mode):
                 if mode == "default" and not appended_xml_readable(folder):

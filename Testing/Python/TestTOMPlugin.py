@@ -13,7 +13,6 @@ skipped when absent); TIMECRITICAL_TEST_OUTPUT_DIR receives scratch files.
 
 import os
 import sys
-import tempfile
 import unittest
 
 import numpy as np
@@ -23,32 +22,11 @@ from paraview import servermanager
 from paraview.simple import *  # noqa: F401,F403
 from vtkmodules.util.numpy_support import vtk_to_numpy
 
-PLUGIN = os.environ.get("TIMECRITICAL_PLUGIN", "")
-SHARED_DATA_DIR = os.environ.get(
-    "TIMECRITICAL_SHARED_DATA_DIR",
-    os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..", "shared", "data"))
-COW = os.path.join(SHARED_DATA_DIR, "cow.obj")
+from timecritical_testing import COW, load_plugin, output_dir  # noqa: E402
 
 
-def load_plugin():
-    if not PLUGIN or not os.path.isfile(PLUGIN):
-        sys.stderr.write("TIMECRITICAL_PLUGIN must name the built TimeCritical.so "
-                         "(<build>/lib/paraview-plugins/TimeCritical/TimeCritical.so); got %r\n"
-                         % PLUGIN)
-        sys.exit(1)
-    LoadPlugin(PLUGIN, remote=False, ns=globals())
-    for name in ("BuildTotallyOrderedMesh", "ExtractTOMResolution"):
-        if name not in globals():
-            sys.stderr.write("LoadPlugin(%s) did not define %s\n" % (PLUGIN, name))
-            sys.exit(1)
 
 
-def output_dir():
-    folder = os.environ.get("TIMECRITICAL_TEST_OUTPUT_DIR")
-    if folder:
-        os.makedirs(folder, exist_ok=True)
-        return tempfile.mkdtemp(prefix="TestTOMPlugin-", dir=folder)
-    return tempfile.mkdtemp(prefix="TestTOMPlugin-")
 
 
 def fetch(proxy):
@@ -175,7 +153,7 @@ class PluginChecks:
         self.assertEqual(counts[2], t)
 
     def test_save_and_reload(self):
-        folder = output_dir()
+        folder = output_dir('TestTOMPlugin')
         extract = self.new(ExtractTOMResolution(Input=self.tom_proxy, Resolution=0.25))
         expected = fetch(extract)
         # DataMode: the XML writer's default (Appended) is not readable by
@@ -230,6 +208,6 @@ class NotATOM(unittest.TestCase):
 
 
 if __name__ == "__main__":
-    load_plugin()
+    load_plugin(globals(), ('BuildTotallyOrderedMesh', 'ExtractTOMResolution'))
     result = unittest.main(argv=[sys.argv[0]], verbosity=2, exit=False).result
     sys.exit(0 if result.wasSuccessful() else 1)

@@ -1,0 +1,37 @@
+"""Helpers shared by the Python tests (imported from the tests' own folder,
+which python3, pvpython and pvbatch put first on sys.path)."""
+
+import os
+import sys
+import tempfile
+
+PLUGIN = os.environ.get("TIMECRITICAL_PLUGIN", "")
+SHARED_DATA_DIR = os.environ.get(
+    "TIMECRITICAL_SHARED_DATA_DIR",
+    os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..", "shared", "data"))
+COW = os.path.join(SHARED_DATA_DIR, "cow.obj")
+
+
+def load_plugin(namespace, names):
+    """Loads TIMECRITICAL_PLUGIN with paraview.simple.LoadPlugin into namespace
+    (the caller's globals()) and exits with a message unless it defines names."""
+    from paraview.simple import LoadPlugin
+    if not PLUGIN or not os.path.isfile(PLUGIN):
+        sys.stderr.write("TIMECRITICAL_PLUGIN must name the built TimeCritical.so "
+                         "(<build>/lib/paraview-plugins/TimeCritical/TimeCritical.so); got %r\n"
+                         % PLUGIN)
+        sys.exit(1)
+    LoadPlugin(PLUGIN, remote=False, ns=namespace)
+    for name in names:
+        if name not in namespace:
+            sys.stderr.write("LoadPlugin(%s) did not define %s\n" % (PLUGIN, name))
+            sys.exit(1)
+
+
+def output_dir(prefix):
+    """A new scratch folder, inside TIMECRITICAL_TEST_OUTPUT_DIR when set."""
+    folder = os.environ.get("TIMECRITICAL_TEST_OUTPUT_DIR")
+    if folder:
+        os.makedirs(folder, exist_ok=True)
+        return tempfile.mkdtemp(prefix=prefix + "-", dir=folder)
+    return tempfile.mkdtemp(prefix=prefix + "-")
