@@ -4,6 +4,7 @@
 #include "TOMIndexLayout.h"
 #include "TOMMesh.h"
 #include "MergeTree.h"
+#include "RefinementSettingChecks.h"
 #include "TOMTraversal.h"
 #include "ViewDependentRefinement.h"
 #include "vtkMergeTreeFieldData.h"
@@ -740,47 +741,34 @@ void vtkMultiresolutionPolyDataMapper::SetHighlightRefinement(bool on)
 
 void vtkMultiresolutionPolyDataMapper::SetPixelThreshold(double tau)
 {
-  if (!(tau >= 0.0) || std::isinf(tau))
+  if (timecritical::CheckNonNegativeSetting(this, "PixelThreshold", tau))
   {
-    vtkErrorMacro("PixelThreshold must be a finite number >= 0, not " << tau << "; ignored.");
-    return;
-  }
-  if (tau != this->PixelThreshold)
-  {
-    this->PixelThreshold = tau;
-    ++this->Internal->ResolutionVersion; // render state, like the resolutions
+    SetRenderState(this->PixelThreshold, tau, this->Internal->ResolutionVersion);
   }
 }
 
 void vtkMultiresolutionPolyDataMapper::SetRefinementTimeLimit(double seconds)
 {
-  if (!(seconds >= 0.0) || std::isinf(seconds))
+  if (timecritical::CheckNonNegativeSetting(this, "RefinementTimeLimit", seconds))
   {
-    vtkErrorMacro("RefinementTimeLimit must be a finite number >= 0, not " << seconds
-                                                                         << "; ignored.");
-    return;
+    SetRenderState(this->RefinementTimeLimit, seconds, this->Internal->ResolutionVersion);
   }
-  SetRenderState(this->RefinementTimeLimit, seconds, this->Internal->ResolutionVersion);
 }
 
 void vtkMultiresolutionPolyDataMapper::SetSilhouetteFactor(double factor)
 {
-  if (!(factor > 0.0 && factor <= 1.0))
+  if (timecritical::CheckFactorSetting(this, "SilhouetteFactor", factor))
   {
-    vtkErrorMacro("SilhouetteFactor must be in (0, 1], not " << factor << "; ignored.");
-    return;
+    this->SilhouetteFactor = factor;
   }
-  this->SilhouetteFactor = factor;
 }
 
 void vtkMultiresolutionPolyDataMapper::SetHighlightFactor(double factor)
 {
-  if (!(factor > 0.0 && factor <= 1.0))
+  if (timecritical::CheckFactorSetting(this, "HighlightFactor", factor))
   {
-    vtkErrorMacro("HighlightFactor must be in (0, 1], not " << factor << "; ignored.");
-    return;
+    this->HighlightFactor = factor;
   }
-  this->HighlightFactor = factor;
 }
 
 vtkIdType vtkMultiresolutionPolyDataMapper::GetObjectRenderedVertices(vtkIdType i) const

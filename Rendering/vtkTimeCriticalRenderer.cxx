@@ -3,6 +3,8 @@
 
 #include "vtkMultiresolutionPolyDataMapper.h"
 
+#include "RefinementSettingChecks.h"
+
 #include "ActiveSetPolicy.h"
 #include "CostModelCalibrator.h"
 #include "DegradationModel.h"
@@ -433,9 +435,8 @@ double vtkTimeCriticalRenderer::GetObjectRefinementTime(vtkIdType object) const
 
 void vtkTimeCriticalRenderer::SetPixelThreshold(double tau)
 {
-  if (!(tau >= 0.0) || std::isinf(tau))
+  if (!timecritical::CheckNonNegativeSetting(this, "PixelThreshold", tau))
   {
-    vtkErrorMacro("PixelThreshold must be a finite number >= 0, not " << tau << "; ignored.");
     return;
   }
   if (this->PixelThreshold != tau)
@@ -447,10 +448,8 @@ void vtkTimeCriticalRenderer::SetPixelThreshold(double tau)
 
 void vtkTimeCriticalRenderer::SetRefinementTimeLimit(double seconds)
 {
-  if (!(seconds >= 0.0) || std::isinf(seconds))
+  if (!timecritical::CheckNonNegativeSetting(this, "RefinementTimeLimit", seconds))
   {
-    vtkErrorMacro("RefinementTimeLimit must be a finite number >= 0, not " << seconds
-                                                                         << "; ignored.");
     return;
   }
   if (this->RefinementTimeLimit != seconds)
@@ -462,9 +461,8 @@ void vtkTimeCriticalRenderer::SetRefinementTimeLimit(double seconds)
 
 void vtkTimeCriticalRenderer::SetSilhouetteFactor(double factor)
 {
-  if (!(factor > 0.0 && factor <= 1.0))
+  if (!timecritical::CheckFactorSetting(this, "SilhouetteFactor", factor))
   {
-    vtkErrorMacro("SilhouetteFactor must be in (0, 1], not " << factor << "; ignored.");
     return;
   }
   if (this->SilhouetteFactor != factor)
@@ -476,9 +474,8 @@ void vtkTimeCriticalRenderer::SetSilhouetteFactor(double factor)
 
 void vtkTimeCriticalRenderer::SetHighlightFactor(double factor)
 {
-  if (!(factor > 0.0 && factor <= 1.0))
+  if (!timecritical::CheckFactorSetting(this, "HighlightFactor", factor))
   {
-    vtkErrorMacro("HighlightFactor must be in (0, 1], not " << factor << "; ignored.");
     return;
   }
   if (this->HighlightFactor != factor)
