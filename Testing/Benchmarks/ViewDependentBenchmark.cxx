@@ -101,7 +101,8 @@ const char* const VDPMReason =
   "source is not installed; driving VDPM on W2's path would mean writing that loop again, "
   "i.e. a second view-dependent renderer, not measuring OpenMesh's";
 
-const PolicyInfo* FindPolicy(const std::string& name)
+/// A policy's Name for its aliases on the command line.
+std::string CanonicalPolicyName(const std::string& name)
 {
   std::string key = name;
   if (key == "none" || key == "reference" || key == "full-resolution")
@@ -120,14 +121,7 @@ const PolicyInfo* FindPolicy(const std::string& name)
   {
     key = "budget";
   }
-  for (const PolicyInfo& policy : AllPolicies)
-  {
-    if (key == policy.Name)
-    {
-      return &policy;
-    }
-  }
-  return nullptr;
+  return key;
 }
 
 //------------------------------------------------------------------------------
@@ -332,35 +326,14 @@ Settings ParseArguments(int argc, char* argv[])
   {
     settings.Json = (std::filesystem::path(settings.Output) / "viewdependent.json").string();
   }
-  std::vector<bool> wanted(std::size(AllPolicies), policies.empty());
-  std::stringstream list(policies);
-  for (std::string name; std::getline(list, name, ',');)
-  {
-    if (name.empty())
-    {
-      continue;
-    }
-    const PolicyInfo* policy = FindPolicy(name);
-    if (!policy)
-    {
-      throw std::runtime_error("unknown policy '" + name + "' (see --help)");
-    }
-    wanted[static_cast<size_t>(policy - AllPolicies)] = true;
-  }
-  if (wanted[2] && !wanted[1])
+  settings.Policies = SelectPolicies(AllPolicies, policies, CanonicalPolicyName);
+  auto selected = [&settings](const PolicyInfo& policy) {
+    return std::find(settings.Policies.begin(), settings.Policies.end(), &policy) !=
+      settings.Policies.end();
+  };
+  if (selected(AllPolicies[2]) && !selected(AllPolicies[1]))
   {
     throw std::runtime_error("policy 'uniform' matches the triangles of 'tau1': select both");
-  }
-  for (size_t i = 0; i < std::size(AllPolicies); ++i)
-  {
-    if (wanted[i])
-    {
-      settings.Policies.push_back(&AllPolicies[i]);
-    }
-  }
-  if (settings.Policies.empty())
-  {
-    throw std::runtime_error("no policy selected");
   }
   return settings;
 }

@@ -116,7 +116,8 @@ const PolicyInfo AllPolicies[] = {
   { PolicyKind::LODProp3D, "lodprop3d", "vtkLODProp3D", -1 },
 };
 
-const PolicyInfo* FindPolicy(const std::string& name)
+/// A policy's Name for its aliases on the command line.
+std::string CanonicalPolicyName(const std::string& name)
 {
   std::string key = name;
   if (key == "activeset" || key == "active-set" || key == "active_set" || key == "tc")
@@ -131,14 +132,7 @@ const PolicyInfo* FindPolicy(const std::string& name)
   {
     key = "lodprop3d";
   }
-  for (const PolicyInfo& policy : AllPolicies)
-  {
-    if (key == policy.Name)
-    {
-      return &policy;
-    }
-  }
-  return nullptr;
+  return key;
 }
 
 //------------------------------------------------------------------------------
@@ -299,32 +293,7 @@ Settings ParseArguments(int argc, char* argv[])
   }
   // Run in the canonical order whatever the order given, so that the
   // reference exists before any policy is compared with it.
-  std::vector<bool> wanted(std::size(AllPolicies), policies.empty());
-  std::stringstream list(policies);
-  for (std::string name; std::getline(list, name, ',');)
-  {
-    if (name.empty())
-    {
-      continue;
-    }
-    const PolicyInfo* policy = FindPolicy(name);
-    if (!policy)
-    {
-      throw std::runtime_error("unknown policy '" + name + "' (see --help)");
-    }
-    wanted[static_cast<size_t>(policy - AllPolicies)] = true;
-  }
-  for (size_t i = 0; i < std::size(AllPolicies); ++i)
-  {
-    if (wanted[i])
-    {
-      settings.Policies.push_back(&AllPolicies[i]);
-    }
-  }
-  if (settings.Policies.empty())
-  {
-    throw std::runtime_error("no policy selected");
-  }
+  settings.Policies = SelectPolicies(AllPolicies, policies, CanonicalPolicyName);
   return settings;
 }
 
