@@ -25,24 +25,6 @@ namespace timecritical
 {
 namespace
 {
-// Id of the first point with a NaN or infinite coordinate, or -1.
-vtkIdType FirstNonFinitePoint(vtkPoints* points)
-{
-  vtkDataArray* data = points->GetData();
-  const vtkIdType n = points->GetNumberOfPoints();
-  for (vtkIdType i = 0; i < n; ++i)
-  {
-    for (int c = 0; c < 3; ++c)
-    {
-      if (!std::isfinite(data->GetComponent(i, c)))
-      {
-        return i;
-      }
-    }
-  }
-  return -1;
-}
-
 // Reports the first cell of `cells` (numbered from `firstCell`) that refers to
 // a point outside [0, numberOfPoints); VTK's cleaning filters would read out
 // of bounds on such cells.
@@ -74,7 +56,7 @@ bool CheckPointIds(vtkAlgorithm* filter, vtkCellArray* cells, vtkIdType firstCel
 SurfaceStatus PrepareSurface(vtkAlgorithm* filter, vtkPolyData* input, PreparedSurface& surface)
 {
   surface = PreparedSurface();
-  if (!input || input->GetNumberOfPoints() == 0 || input->GetNumberOfCells() == 0)
+  if (IsEmptyPiece(input))
   {
     return SurfaceStatus::Empty;
   }
@@ -275,6 +257,32 @@ bool SetClampedSetting(vtkObject* object, const char* name, double value, double
   }
   member = clamped;
   return true;
+}
+
+vtkIdType FirstNonFinitePoint(vtkPoints* points)
+{
+  if (!points)
+  {
+    return -1;
+  }
+  vtkDataArray* data = points->GetData();
+  const vtkIdType n = points->GetNumberOfPoints();
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      if (!std::isfinite(data->GetComponent(i, c)))
+      {
+        return i;
+      }
+    }
+  }
+  return -1;
+}
+
+bool IsEmptyPiece(vtkPolyData* data)
+{
+  return !data || (data->GetNumberOfPoints() == 0 && data->GetNumberOfCells() == 0);
 }
 
 bool IsIntegerType(int type)

@@ -18,6 +18,7 @@
 
 class vtkAlgorithm;
 class vtkObject;
+class vtkPoints;
 class vtkPolyData;
 
 namespace timecritical
@@ -40,7 +41,7 @@ struct PreparedSurface
 enum class SurfaceStatus
 {
   Ready,  ///< the surface has triangles
-  Empty,  ///< no points or no cells at all: nothing reported, the caller decides
+  Empty,  ///< an empty piece (IsEmptyPiece): nothing reported, the caller decides
   Failed, ///< unusable input, already reported as an error on the filter
 };
 
@@ -90,6 +91,16 @@ bool SetClampedSetting(vtkObject* object, const char* name, double value, double
 
 /// Whether a VTK data type (VTK_INT, ...) holds integers; index arrays must.
 bool IsIntegerType(int type);
+
+/// Id of the first point with a NaN or infinite coordinate, or -1 (also for null points).
+vtkIdType FirstNonFinitePoint(vtkPoints* points);
+
+/**
+ * Whether `data` is an empty piece (null, or no points and no cells): what a
+ * parallel reader gives the ranks that hold no data. Filters give an empty
+ * output for it quietly, as VTK's own filters do.
+ */
+bool IsEmptyPiece(vtkPolyData* data);
 }
 
 #endif

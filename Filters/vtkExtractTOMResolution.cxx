@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkExtractTOMResolution.h"
 
+#include "TOMFilterSupport.h"
+
 #include "TOMMesh.h"
 #include "TOMTraversal.h"
 #include "vtkTOMFieldData.h"
@@ -85,6 +87,12 @@ int vtkExtractTOMResolution::RequestData(
   this->ExtractedError = 0.0;
   const double start = vtkTimerLog::GetUniversalTime();
 
+  if (timecritical::IsEmptyPiece(input))
+  {
+    // An empty piece (parallel readers give them to ranks without data).
+    this->ExtractionTime = vtkTimerLog::GetUniversalTime() - start;
+    return 1;
+  }
   vtkNew<vtkTOMFieldData> tom;
   if (!tom->Read(input))
   {
@@ -92,6 +100,12 @@ int vtkExtractTOMResolution::RequestData(
     return 0;
   }
   const timecritical::TOMMesh& mesh = tom->GetMesh();
+  if (mesh.GetNumberOfVertices() == 0)
+  {
+    // A valid TOM of nothing (all its counts 0): an empty mesh at every resolution.
+    this->ExtractionTime = vtkTimerLog::GetUniversalTime() - start;
+    return 1;
+  }
   const timecritical::TOMTraversal traversal(mesh);
 
   uint32_t targetTriangles = mesh.GetNumberOfTriangles();

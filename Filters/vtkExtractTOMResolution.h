@@ -4,7 +4,8 @@
  * @brief   extracts one resolution of a Totally Ordered Mesh
  *
  * Input: a TOM made by vtkTOMBuilder (validated with vtkTOMFieldData; other
- * input is an error). Output: an ordinary vtkPolyData with the active points
+ * input is an error; an empty input, without points and cells, gives an
+ * empty output quietly, as does a TOM of no points). Output: an ordinary vtkPolyData with the active points
  * (a prefix of the input points, with their point data) and the triangles of
  * the chosen resolution (with their cell data). The resolution is chosen by a
  * fraction of the triangles (SetResolution), a triangle count

@@ -42,8 +42,9 @@ int vtkTOMBuilder::RequestData(
   switch (timecritical::PrepareSurface(this, input, surface))
   {
     case timecritical::SurfaceStatus::Empty:
-      vtkErrorMacro("Empty input: a TOM needs a surface with points and triangles.");
-      return 0;
+      // Nothing to simplify (e.g. a rank without data in parallel): an empty
+      // output, quietly, as VTK filters give for empty input.
+      return 1;
     case timecritical::SurfaceStatus::Failed:
       return 0;
     case timecritical::SurfaceStatus::Ready:

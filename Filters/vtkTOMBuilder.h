@@ -12,8 +12,10 @@
  *
  * The input is cleaned first: coincident points are merged, polygons and
  * strips triangulated; lines, vertices and degenerate triangles are dropped
- * with a warning. Empty input, input without surface cells and non-finite
- * coordinates are errors.
+ * with a warning. Input without surface cells, out-of-range point ids and
+ * non-finite coordinates are errors (empty output). An empty input (no points,
+ * no cells: a rank without data in parallel) gives an empty output without a
+ * message.
  *
  * @sa vtkExtractTOMResolution vtkTOMFieldData
  */

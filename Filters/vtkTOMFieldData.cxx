@@ -107,6 +107,15 @@ bool vtkTOMFieldData::Read(vtkPolyData* data)
         << " TOMSubstitution values";
     return fail(msg.str());
   }
+  // Coordinates are data too: a NaN or infinite point would travel into every
+  // extracted mesh and into the renderer's bounds.
+  const vtkIdType badPoint = timecritical::FirstNonFinitePoint(data->GetPoints());
+  if (badPoint >= 0)
+  {
+    std::ostringstream msg;
+    msg << "point " << badPoint << " has a non-finite (NaN or infinite) coordinate";
+    return fail(msg.str());
+  }
   if (data->GetNumberOfVerts() || data->GetNumberOfLines() || data->GetNumberOfStrips())
   {
     return fail("a TOM holds triangles only, but the data also has vertices, lines or strips");

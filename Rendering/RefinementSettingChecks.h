@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// Checks of the view-dependent refinement settings that
-// vtkMultiresolutionPolyDataMapper and vtkTimeCriticalRenderer both take:
-// one rule and one message per kind of setting. A bad value gives an error
-// and false; the caller then keeps its setting.
+// Checks of the numeric settings of vtkMultiresolutionPolyDataMapper and
+// vtkTimeCriticalRenderer (view-dependent refinement, display, cost model):
+// one rule and one message per kind of setting. A bad value (NaN, infinite or
+// out of range) gives an error and false; the caller then keeps its setting.
 #ifndef timecritical_RefinementSettingChecks_h
 #define timecritical_RefinementSettingChecks_h
 
@@ -20,6 +20,31 @@ inline bool CheckNonNegativeSetting(vtkObject* object, const char* name, double 
   {
     vtkErrorWithObjectMacro(
       object, << name << " must be a finite number >= 0, not " << value << "; ignored.");
+    return false;
+  }
+  return true;
+}
+
+/// A finite number > 0 (sizes, distances, resolutions).
+inline bool CheckPositiveSetting(vtkObject* object, const char* name, double value)
+{
+  if (!(value > 0.0) || std::isinf(value))
+  {
+    vtkErrorWithObjectMacro(
+      object, << name << " must be a finite number > 0, not " << value << "; ignored.");
+    return false;
+  }
+  return true;
+}
+
+/// A number in [minimum, maximum] (not clamped: an out-of-range value is a mistake).
+inline bool CheckRangeSetting(
+  vtkObject* object, const char* name, double value, double minimum, double maximum)
+{
+  if (!(value >= minimum && value <= maximum))
+  {
+    vtkErrorWithObjectMacro(object, << name << " must be in [" << minimum << ", " << maximum
+                                    << "], not " << value << "; ignored.");
     return false;
   }
   return true;

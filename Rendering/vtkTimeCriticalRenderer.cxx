@@ -433,6 +433,82 @@ double vtkTimeCriticalRenderer::GetObjectRefinementTime(vtkIdType object) const
   return PerObject<double>(this->Internal->RefinementTimes, object, NaN);
 }
 
+namespace
+{
+// Assigns and marks modified when the value changes (the checks come first).
+template <typename T>
+void Assign(vtkObject* object, T& member, T value)
+{
+  if (member != value)
+  {
+    member = value;
+    object->Modified();
+  }
+}
+}
+
+void vtkTimeCriticalRenderer::SetFocusPoint(double x, double y)
+{
+  if (timecritical::CheckRangeSetting(this, "FocusPoint x", x, 0.0, 1.0) &&
+    timecritical::CheckRangeSetting(this, "FocusPoint y", y, 0.0, 1.0))
+  {
+    Assign(this, this->FocusPoint[0], x);
+    Assign(this, this->FocusPoint[1], y);
+  }
+}
+
+void vtkTimeCriticalRenderer::SetDisplayResolution(double x, double y)
+{
+  if (timecritical::CheckPositiveSetting(this, "DisplayResolution x", x) &&
+    timecritical::CheckPositiveSetting(this, "DisplayResolution y", y))
+  {
+    Assign(this, this->DisplayResolution[0], x);
+    Assign(this, this->DisplayResolution[1], y);
+  }
+}
+
+void vtkTimeCriticalRenderer::SetDisplaySize(double x, double y)
+{
+  if (timecritical::CheckPositiveSetting(this, "DisplaySize x", x) &&
+    timecritical::CheckPositiveSetting(this, "DisplaySize y", y))
+  {
+    Assign(this, this->DisplaySize[0], x);
+    Assign(this, this->DisplaySize[1], y);
+  }
+}
+
+void vtkTimeCriticalRenderer::SetViewingDistance(double metres)
+{
+  if (timecritical::CheckPositiveSetting(this, "ViewingDistance", metres))
+  {
+    Assign(this, this->ViewingDistance, metres);
+  }
+}
+
+void vtkTimeCriticalRenderer::SetStillUpdateRateThreshold(double rate)
+{
+  if (timecritical::CheckNonNegativeSetting(this, "StillUpdateRateThreshold", rate))
+  {
+    Assign(this, this->StillUpdateRateThreshold, rate);
+  }
+}
+
+void vtkTimeCriticalRenderer::SetSafetyFactor(double k)
+{
+  if (timecritical::CheckRangeSetting(this, "SafetyFactor", k, 0.0, 10.0))
+  {
+    Assign(this, this->SafetyFactor, k);
+  }
+}
+
+void vtkTimeCriticalRenderer::SetNewObjectCostFactor(double factor)
+{
+  if (timecritical::CheckRangeSetting(this, "NewObjectCostFactor", factor, 1.0, 10.0))
+  {
+    Assign(this, this->NewObjectCostFactor, factor);
+  }
+}
+
 void vtkTimeCriticalRenderer::SetPixelThreshold(double tau)
 {
   if (!timecritical::CheckNonNegativeSetting(this, "PixelThreshold", tau))

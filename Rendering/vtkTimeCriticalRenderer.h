@@ -126,17 +126,20 @@ public:
    * Focus point for eccentricity, in normalized viewport coordinates
    * ([0,1]^2, (0.5, 0.5) = screen centre, the default).
    */
-  vtkSetVector2Macro(FocusPoint, double);
+  void SetFocusPoint(double x, double y); ///< each in [0, 1]
+  void SetFocusPoint(const double point[2]) { this->SetFocusPoint(point[0], point[1]); }
   vtkGetVector2Macro(FocusPoint, double);
   ///@}
 
   ///@{
   /// Physical display for eq. 8: resolution (pixels), size and viewing distance (metres).
-  vtkSetVector2Macro(DisplayResolution, double);
+  void SetDisplayResolution(double x, double y); ///< pixels, finite and > 0
+  void SetDisplayResolution(const double r[2]) { this->SetDisplayResolution(r[0], r[1]); }
   vtkGetVector2Macro(DisplayResolution, double);
-  vtkSetVector2Macro(DisplaySize, double);
+  void SetDisplaySize(double x, double y); ///< metres, finite and > 0
+  void SetDisplaySize(const double size[2]) { this->SetDisplaySize(size[0], size[1]); }
   vtkGetVector2Macro(DisplaySize, double);
-  vtkSetMacro(ViewingDistance, double);
+  void SetViewingDistance(double metres); ///< finite and > 0
   vtkGetMacro(ViewingDistance, double);
   ///@}
 
@@ -155,7 +158,7 @@ public:
   vtkSetMacro(UseDesiredUpdateRate, bool);
   vtkGetMacro(UseDesiredUpdateRate, bool);
   vtkBooleanMacro(UseDesiredUpdateRate, bool);
-  vtkSetMacro(StillUpdateRateThreshold, double);
+  void SetStillUpdateRateThreshold(double rate); ///< frames per second, finite and >= 0
   vtkGetMacro(StillUpdateRateThreshold, double);
   ///@}
 
@@ -210,7 +213,7 @@ public:
    * paper's "worst case estimate"). The reported prediction stays unbiased.
    * Default 1.5; 0 plans to the target itself.
    */
-  vtkSetClampMacro(SafetyFactor, double, 0.0, 10.0);
+  void SetSafetyFactor(double k); ///< in [0, 10]
   vtkGetMacro(SafetyFactor, double);
   ///@}
 
@@ -223,7 +226,7 @@ public:
    * new objects costs about twice as much in its first frame. Default 2; 1
    * treats them like the others.
    */
-  vtkSetClampMacro(NewObjectCostFactor, double, 1.0, 10.0);
+  void SetNewObjectCostFactor(double factor); ///< in [1, 10]
   vtkGetMacro(NewObjectCostFactor, double);
   ///@}
 

@@ -89,13 +89,40 @@ TEST(vtkTOMBuilder, PointAndCellDataTravelWithTheirPointsAndTriangles)
   tt::ExpectDataTravelsWithPointsAndTriangles(input, tom);
 }
 
-TEST(vtkTOMBuilder, EmptyInputIsAnError)
+TEST(vtkTOMBuilder, EmptyInputGivesEmptyOutputQuietly)
 {
+  // What a parallel reader gives the ranks without data: no message, an empty
+  // output that the extraction passes on quietly too.
   vtkNew<vtkPolyData> empty;
   vtkNew<vtkTOMBuilder> builder;
   MessageLog log(builder);
   auto out = Build(empty, builder);
-  EXPECT_TRUE(log.ErrorContains("Empty input"));
+  EXPECT_TRUE(log.Errors.empty()) << log.AllErrors();
+  EXPECT_TRUE(log.Warnings.empty());
+  EXPECT_EQ(out->GetNumberOfPoints(), 0);
+  EXPECT_EQ(out->GetNumberOfCells(), 0);
+
+  vtkNew<vtkExtractTOMResolution> extract;
+  MessageLog extractLog(extract);
+  extract->SetInputData(out);
+  extract->SetResolution(0.5);
+  extract->Update();
+  EXPECT_TRUE(extractLog.Errors.empty()) << extractLog.AllErrors();
+  EXPECT_EQ(extract->GetOutput()->GetNumberOfPoints(), 0);
+  EXPECT_EQ(extract->GetOutput()->GetNumberOfCells(), 0);
+}
+
+TEST(vtkTOMBuilder, PointsWithoutCellsAreAnError)
+{
+  vtkNew<vtkPolyData> cloud;
+  vtkNew<vtkPoints> points;
+  points->InsertNextPoint(0, 0, 0);
+  points->InsertNextPoint(1, 0, 0);
+  cloud->SetPoints(points);
+  vtkNew<vtkTOMBuilder> builder;
+  MessageLog log(builder);
+  auto out = Build(cloud, builder);
+  EXPECT_TRUE(log.ErrorContains("no surface cells")) << log.AllErrors();
   EXPECT_EQ(out->GetNumberOfPoints(), 0);
 }
 
@@ -374,6 +401,64 @@ TEST(vtkExtractTOMResolution, CorruptedTOMIsAnError)
   MessageLog log3(extract3);
   Extract(corrupted, extract3);
   EXPECT_TRUE(log3.ErrorContains("invalid TOM"));
+}
+
+TEST(vtkExtractTOMResolution, NonFiniteCoordinatesAreAnError)
+{
+  // Coordinates are checked like the arrays: NaN or infinite points would
+  // otherwise come out of every extraction.
+  auto tom = Build(MakeSphere());
+  for (double bad : { std::numeric_limits<double>::quiet_NaN(),
+         -std::numeric_limits<double>::infinity() })
+  {
+    auto corrupted = vtkSmartPointer<vtkPolyData>::New();
+    corrupted->DeepCopy(tom);
+    corrupted->GetPoints()->SetPoint(7, 0.0, bad, 0.0);
+    vtkNew<vtkExtractTOMResolution> extract;
+    MessageLog log(extract);
+    auto out = Extract(corrupted, extract);
+    EXPECT_TRUE(log.ErrorContains("point 7 has a non-finite")) << log.AllErrors();
+    EXPECT_EQ(out->GetNumberOfPoints(), 0);
+    EXPECT_EQ(out->GetNumberOfCells(), 0);
+  }
+}
+
+TEST(vtkExtractTOMResolution, TOMOfNoPointsGivesEmptyOutput)
+{
+  // Counts 0, 0, 0, 0 and empty arrays but no vtkPoints: a valid TOM of
+  // nothing, which once dereferenced the missing points.
+  vtkNew<vtkPolyData> nothing;
+  vtkNew<vtkTypeUInt32Array> substitution;
+  substitution->SetName(vtkTOMFieldData::SubstitutionArrayName());
+  nothing->GetPointData()->AddArray(substitution);
+  vtkNew<vtkTypeUInt32Array> counts;
+  counts->SetName(vtkTOMFieldData::CountsArrayName());
+  counts->SetNumberOfValues(4);
+  counts->FillValue(0);
+  nothing->GetFieldData()->AddArray(counts);
+  for (int mode = 0; mode < 3; ++mode)
+  {
+    vtkNew<vtkExtractTOMResolution> extract;
+    MessageLog log(extract);
+    if (mode == 0)
+    {
+      extract->SetResolution(0.5);
+    }
+    else if (mode == 1)
+    {
+      extract->SetTargetTriangles(10);
+    }
+    else
+    {
+      extract->SetMaximumError(0.1);
+    }
+    extract->SetInputData(nothing);
+    extract->Update();
+    EXPECT_TRUE(log.Errors.empty()) << log.AllErrors();
+    EXPECT_EQ(extract->GetOutput()->GetNumberOfPoints(), 0);
+    EXPECT_EQ(extract->GetOutput()->GetNumberOfCells(), 0);
+    EXPECT_EQ(extract->GetExtractedTriangleCount(), 0);
+  }
 }
 
 TEST(vtkExtractTOMResolution, NaNResolutionIsReported)

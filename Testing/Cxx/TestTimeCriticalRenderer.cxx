@@ -30,8 +30,10 @@
 
 #include <cmath>
 #include <fstream>
+#include <functional>
 #include <limits>
 #include <string>
+#include <vector>
 
 namespace
 {
@@ -434,6 +436,76 @@ TEST(TimeCriticalRenderer, BadSettingsAreRejected)
   errors->Clear();
   EXPECT_FALSE(renderer->Calibrate());
   EXPECT_TRUE(errors->GetError());
+}
+
+TEST(TimeCriticalRenderer, NumericSettersRejectNaNAndOutOfRange)
+{
+  // Every numeric setting: NaN, infinities and out-of-range values give an
+  // error and keep the previous value (NaN once passed the clamp macros and
+  // made every object coarsest).
+  vtkNew<vtkTimeCriticalRenderer> renderer;
+  vtkNew<vtkTest::ErrorObserver> errors;
+  renderer->AddObserver(vtkCommand::ErrorEvent, errors);
+  const double inf = std::numeric_limits<double>::infinity();
+  auto expectRejected = [&](const char* what, double value, auto set, auto get) {
+    const double before = get();
+    errors->Clear();
+    set(value);
+    EXPECT_TRUE(errors->GetError()) << what << " accepted " << value;
+    EXPECT_EQ(get(), before) << what << " changed on " << value;
+  };
+  auto expectAccepted = [&](const char* what, double value, auto set, auto get) {
+    errors->Clear();
+    set(value);
+    EXPECT_FALSE(errors->GetError()) << what << " rejected " << value;
+    EXPECT_EQ(get(), value) << what;
+  };
+  auto* r = renderer.Get();
+  struct Setting
+  {
+    const char* Name;
+    std::function<void(double)> Set;
+    std::function<double()> Get;
+    std::vector<double> Bad;
+    double Good;
+  };
+  const std::vector<Setting> settings = {
+    { "SafetyFactor", [r](double v) { r->SetSafetyFactor(v); },
+      [r] { return r->GetSafetyFactor(); }, { NaN, -0.5, 11.0, inf }, 2.0 },
+    { "NewObjectCostFactor", [r](double v) { r->SetNewObjectCostFactor(v); },
+      [r] { return r->GetNewObjectCostFactor(); }, { NaN, 0.5, 11.0, -inf }, 3.0 },
+    { "FocusPoint x", [r](double v) { r->SetFocusPoint(v, 0.5); },
+      [r] { return r->GetFocusPoint()[0]; }, { NaN, -0.1, 1.5, inf }, 0.25 },
+    { "FocusPoint y", [r](double v) { r->SetFocusPoint(0.25, v); },
+      [r] { return r->GetFocusPoint()[1]; }, { NaN, -0.1, 1.5, inf }, 0.75 },
+    { "DisplayResolution x", [r](double v) { r->SetDisplayResolution(v, 1080.0); },
+      [r] { return r->GetDisplayResolution()[0]; }, { NaN, 0.0, -1.0, inf }, 1920.0 },
+    { "DisplayResolution y", [r](double v) { r->SetDisplayResolution(1920.0, v); },
+      [r] { return r->GetDisplayResolution()[1]; }, { NaN, 0.0, -1.0, inf }, 1200.0 },
+    { "DisplaySize x", [r](double v) { r->SetDisplaySize(v, 0.3); },
+      [r] { return r->GetDisplaySize()[0]; }, { NaN, 0.0, -0.5, inf }, 0.6 },
+    { "DisplaySize y", [r](double v) { r->SetDisplaySize(0.6, v); },
+      [r] { return r->GetDisplaySize()[1]; }, { NaN, 0.0, -0.5, inf }, 0.35 },
+    { "ViewingDistance", [r](double v) { r->SetViewingDistance(v); },
+      [r] { return r->GetViewingDistance(); }, { NaN, 0.0, -0.5, inf }, 0.8 },
+    { "StillUpdateRateThreshold", [r](double v) { r->SetStillUpdateRateThreshold(v); },
+      [r] { return r->GetStillUpdateRateThreshold(); }, { NaN, -1.0, inf }, 0.5 },
+  };
+  for (const Setting& setting : settings)
+  {
+    for (double bad : setting.Bad)
+    {
+      expectRejected(setting.Name, bad, setting.Set, setting.Get);
+    }
+    expectAccepted(setting.Name, setting.Good, setting.Set, setting.Get);
+    expectRejected(setting.Name, NaN, setting.Set, setting.Get); // keeps the good value
+  }
+  // A rejected component leaves both components as they were.
+  r->SetFocusPoint(0.5, 0.5);
+  errors->Clear();
+  r->SetFocusPoint(0.2, NaN);
+  EXPECT_TRUE(errors->GetError());
+  EXPECT_EQ(r->GetFocusPoint()[0], 0.5);
 }
 
 TEST(TimeCriticalRenderer, EmptySceneAndEmptyBlocks)

@@ -690,11 +690,17 @@ class BadInput(unittest.TestCase):
         self.assertEqual(out.GetNumberOfCells(), 0)
         self.assertFalse(vtkTOMFieldData.HasTOMArrays(out))
 
-    def test_empty(self):
-        self.assert_build_fails(vtkPolyData(), "Empty input")
+    def test_empty_piece_is_quiet(self):
+        # A rank without data in parallel: empty output, no message, also downstream.
+        builder, messages = build(vtkPolyData())
+        self.assertEqual(messages.errors + messages.warnings, [])
+        self.assertEqual(builder.GetOutput().GetNumberOfPoints(), 0)
+        extractor, messages = extract(builder.GetOutput(), Resolution=0.5)
+        self.assertEqual(messages.errors + messages.warnings, [])
+        self.assertEqual(extractor.GetOutput().GetNumberOfCells(), 0)
 
     def test_points_without_cells(self):
-        self.assert_build_fails(polydata([(0, 0, 0), (1, 0, 0), (0, 1, 0)]), "Empty input")
+        self.assert_build_fails(polydata([(0, 0, 0), (1, 0, 0), (0, 1, 0)]), "no surface cells")
 
     def test_lines_only(self):
         self.assert_build_fails(
