@@ -972,6 +972,10 @@ void vtkMultiresolutionPolyDataMapper::RenderPiece(vtkRenderer* ren, vtkActor* a
   }
 
   this->RefineObjects(ren, act);
+  this->NumberOfRewrittenObjects = 0;
+  this->IndexBytesUploaded = 0;
+  this->CellDataBytesUploaded = 0;
+  this->IndexUpdateTime = 0.0;
 
   // As vtkOpenGLPolyDataMapper::RenderPiece, on the merged leaves.
   this->UpdateCameraShiftScale(ren, act);
@@ -1275,6 +1279,7 @@ void vtkMultiresolutionPolyDataMapper::BuildIBO(vtkRenderer* ren, vtkActor* act,
 void vtkMultiresolutionPolyDataMapper::FillIndexBuffer(vtkRenderer* ren, vtkActor* act)
 {
   Internals& in = *this->Internal;
+  const auto startTime = std::chrono::steady_clock::now();
   in.UploadedVersion = in.ResolutionVersion;
   ++in.IndexBufferBuildCount;
   vtkProperty* prop = act->GetProperty();
@@ -1320,6 +1325,7 @@ void vtkMultiresolutionPolyDataMapper::FillIndexBuffer(vtkRenderer* ren, vtkActo
     {
       continue; // culled
     }
+    ++this->NumberOfRewrittenObjects;
     const uint32_t base = static_cast<uint32_t>(object.VertexOffset);
     const vtkIdType firstCell = in.PolyCellBase + object.PolyOffset;
     if (object.Refinement && this->ViewDependentRefinement)
@@ -1498,6 +1504,7 @@ void vtkMultiresolutionPolyDataMapper::FillIndexBuffer(vtkRenderer* ren, vtkActo
   if (n > 0)
   {
     ibo->Upload(indices, n, vtkOpenGLBufferObject::ElementArrayBuffer);
+    this->IndexBytesUploaded += static_cast<vtkIdType>(4 * n);
   }
   ibo->IndexCount = n;
 
@@ -1508,6 +1515,7 @@ void vtkMultiresolutionPolyDataMapper::FillIndexBuffer(vtkRenderer* ren, vtkActo
     {
       vertexIBO->Upload(
         in.VertexIndices.data(), vertexIndices, vtkOpenGLBufferObject::ElementArrayBuffer);
+      this->IndexBytesUploaded += static_cast<vtkIdType>(4 * vertexIndices);
     }
     vertexIBO->IndexCount = vertexIndices;
   }
@@ -1519,6 +1527,8 @@ void vtkMultiresolutionPolyDataMapper::FillIndexBuffer(vtkRenderer* ren, vtkActo
   {
     this->UploadResolutionColors();
   }
+  this->IndexUpdateTime =
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - startTime).count();
 }
 
 //------------------------------------------------------------------------------
@@ -1578,6 +1588,7 @@ void vtkMultiresolutionPolyDataMapper::UploadCellTextures(vtkRenderer* ren, size
     this->CellScalarTexture->SetContext(renWin);
     this->CellScalarBuffer->Upload(
       in.CellColors.data(), 4 * total, vtkOpenGLBufferObject::TextureBuffer);
+    this->CellDataBytesUploaded += static_cast<vtkIdType>(4 * total);
     this->CellScalarTexture->CreateTextureBuffer(
       static_cast<unsigned int>(total), 4, VTK_UNSIGNED_CHAR, this->CellScalarBuffer);
   }
@@ -1608,6 +1619,7 @@ void vtkMultiresolutionPolyDataMapper::UploadCellTextures(vtkRenderer* ren, size
     {
       this->CellNormalBuffer->Upload(
         in.CellNormals.data(), 4 * total, vtkOpenGLBufferObject::TextureBuffer);
+      this->CellDataBytesUploaded += static_cast<vtkIdType>(16 * total);
       this->CellNormalTexture->CreateTextureBuffer(
         static_cast<unsigned int>(total), 4, VTK_FLOAT, this->CellNormalBuffer);
     }
@@ -1621,6 +1633,7 @@ void vtkMultiresolutionPolyDataMapper::UploadCellTextures(vtkRenderer* ren, size
       }
       this->CellNormalBuffer->Upload(
         in.CellNormalBytes.data(), 4 * total, vtkOpenGLBufferObject::TextureBuffer);
+      this->CellDataBytesUploaded += static_cast<vtkIdType>(4 * total);
       this->CellNormalTexture->CreateTextureBuffer(
         static_cast<unsigned int>(total), 4, VTK_UNSIGNED_CHAR, this->CellNormalBuffer);
     }

@@ -126,6 +126,14 @@ public:
   ///@}
 
   ///@{
+  /// Index updates of the last render: objects rewritten, bytes uploaded, CPU seconds.
+  vtkGetMacro(NumberOfRewrittenObjects, vtkIdType);
+  vtkGetMacro(IndexBytesUploaded, vtkIdType);
+  vtkGetMacro(CellDataBytesUploaded, vtkIdType);
+  vtkGetMacro(IndexUpdateTime, double);
+  ///@}
+
+  ///@{
   /// Resolution map: grey level per object, lighter = more detail. Default off.
   vtkSetMacro(ColorByResolution, bool);
   vtkGetMacro(ColorByResolution, bool);
@@ -272,6 +280,10 @@ protected:
   vtkIdType RenderedTriangles = 0;
   vtkIdType RenderedVertices = 0;
   int NumberOfDrawCalls = 0;
+  vtkIdType NumberOfRewrittenObjects = 0;
+  vtkIdType IndexBytesUploaded = 0;
+  vtkIdType CellDataBytesUploaded = 0;
+  double IndexUpdateTime = 0.0;
   bool ColorByResolution = false;
   bool ViewDependentRefinement = true;
   int RefinementMode = BUDGET;
