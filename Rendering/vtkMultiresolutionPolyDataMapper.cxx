@@ -56,6 +56,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <memory>
 #include <stdexcept>
 #include <vector>
@@ -137,6 +138,68 @@ private:
   void operator=(const vtkMultiresolutionReleaseProxy&) = delete;
 };
 vtkStandardNewMacro(vtkMultiresolutionReleaseProxy);
+
+/// What an object's index slot holds: compared with what it should hold to
+/// tell which objects an update must rewrite.
+enum class ContentKind
+{
+  Unwritten,
+  Culled,
+  Front,  ///< Key: the front's version
+  Prefix, ///< Key: the TOM's active vertex count
+  Whole   ///< non-TOM leaf in full
+};
+
+struct Content
+{
+  ContentKind Kind = ContentKind::Unwritten;
+  uint64_t Key = 0;
+  bool operator==(const Content& other) const
+  {
+    return this->Kind == other.Kind && this->Key == other.Key;
+  }
+};
+
+/// Primitives [Start, Start + Size) of the index buffer.
+struct Range
+{
+  size_t Start = 0;
+  size_t Size = 0;
+};
+
+/// Padding every slot gets on top of IndexSlack's share, so that small
+/// objects can change by a few triangles in place.
+constexpr size_t MinimumSlack = 8;
+
+/// Dirty ranges closer than this (primitives) are uploaded as one: the
+/// unchanged primitives between them cost less than another upload call.
+constexpr size_t UploadGap = 256;
+
+/// Sorts and merges ranges (in place, no allocation), clipped to [0, end).
+void CoalesceRanges(std::vector<Range>& ranges, size_t end)
+{
+  std::sort(ranges.begin(), ranges.end(),
+    [](const Range& a, const Range& b) { return a.Start < b.Start; });
+  size_t kept = 0;
+  for (const Range& range : ranges)
+  {
+    const size_t stop = std::min(range.Start + range.Size, end);
+    if (range.Start >= stop)
+    {
+      continue;
+    }
+    if (kept > 0 && range.Start <= ranges[kept - 1].Start + ranges[kept - 1].Size + UploadGap)
+    {
+      Range& last = ranges[kept - 1];
+      last.Size = std::max(last.Start + last.Size, stop) - last.Start;
+    }
+    else
+    {
+      ranges[kept++] = Range{ range.Start, stop - range.Start };
+    }
+  }
+  ranges.resize(kept); // shrinking: no allocation
+}
 }
 
 struct vtkMultiresolutionPolyDataMapper::Internals
@@ -175,6 +238,17 @@ struct vtkMultiresolutionPolyDataMapper::Internals
     vtkIdType RenderedVertices = 0;
     int ColorLevel = -1;     // level written into ResolutionColors, -1 = none yet
     bool ColorDirty = false; // ResolutionColors of its vertices not yet on the GPU
+    // Bumped when a refinement moved the front: its slot must be rewritten.
+    uint64_t FrontVersion = 0;
+    // Its slot in the index buffer, in primitives of the drawn representation:
+    // [SlotStart, SlotStart + SlotUsed) are its primitives, the rest up to
+    // SlotSize degenerate (room to grow in place).
+    size_t SlotStart = 0;
+    size_t SlotSize = 0;
+    size_t SlotUsed = 0;
+    size_t FullPrimitives = 0; // at full resolution: no slot needs more
+    Content Written;           // what the slot holds
+    bool Rewritten = false;    // by the last render
   };
 
   std::vector<Object> Objects;
@@ -208,9 +282,35 @@ struct vtkMultiresolutionPolyDataMapper::Internals
   unsigned long UploadedVersion = ~0ul;
   bool OnlyIndicesChanged = false;
 
+  // The index buffer of the triangle primitive as per-object slots, laid out
+  // by the last full rebuild (FillIndexBuffer): its representation, and the
+  // capacity that holds every object at full resolution (the CPU copy, the
+  // GPU buffer and the cell textures all have it, so that no update reallocates).
+  bool LayoutValid = false;
+  int Representation = VTK_SURFACE;
+  size_t PerPrimitive = 3; // indices per primitive
+  bool CanPad = true;      // degenerate primitives exist (not for points)
+  bool CellData = false;
+  bool Corners = false; // points with cell data: one point per triangle corner
+  bool VertexVisibility = false;
+  size_t Capacity = 0;  // primitives
+  size_t Tail = 0;      // primitives drawn: slots, padding and holes
+  size_t Used = 0;      // primitives of the objects; the other Tail - Used are degenerate
+  std::vector<Range> Holes;        // free ranges below Tail, sorted and merged
+  std::vector<Range> DirtyIndices; // rewritten by this update (primitives)
+  std::vector<Range> DirtyTexels;  // cells rewritten by this update (primitives)
+  size_t TexelBase = 0;            // texel of primitive 0 (non-TOM vertices and lines first)
+  size_t Texels = 0;
+  bool FloatCellNormals = true;
+  uint32_t StagedTriangles = 0; // of the TOM prefix extracted into Scratch
+  vtkIdType RelayoutCount = 0;
+  std::vector<uint32_t> SlotOrder;      // objects by slot position (Compact)
+  size_t SlottedObjects = 0;            // objects with a slot
+  std::vector<uint32_t> CompactIndices; // GetLastIndices(), built on demand
+  bool CompactValid = false;
+
   // Grow-only buffers: no allocation from frame to frame once grown.
   std::vector<uint32_t> Indices;
-  size_t IndexCount = 0;
   std::vector<uint32_t> Scratch;
   std::vector<uint32_t> VertexIndices;
   std::vector<vtkIdType> PrimitiveCells;
@@ -229,6 +329,24 @@ struct vtkMultiresolutionPolyDataMapper::Internals
   bool WarnedNonPolyData = false;
   vtkIdType VertexBufferBuildCount = 0;
   vtkIdType IndexBufferBuildCount = 0;
+
+  Content Describe(const Object& object, bool viewDependent) const;
+  size_t Stage(Object& object, const Content& content);
+  void Emit(const Object& object, const Content& content, size_t used, uint32_t* out,
+    vtkIdType* cells, vtkCellArray* polys) const;
+  void SetRenderedCounts(Object& object, const Content& content) const;
+  size_t SlotSizeFor(size_t used, size_t full, double slack) const;
+  bool Allocate(size_t size, size_t& start, bool& fresh);
+  void Release(size_t start, size_t size);
+  bool GrowInPlace(Object& object, size_t size, bool& fresh);
+  void FillDegenerate(size_t start, size_t count, uint32_t vertex);
+  void WriteSlot(Object& object, const Content& content, size_t used, size_t extent,
+    vtkCellArray* polys);
+  void ClearSlot(Object& object);
+  bool Update(Object& object, const Content& content, double slack, vtkCellArray* polys);
+  void LayOut(bool viewDependent, double slack, vtkCellArray* polys);
+  void Compact(double slack);
+  size_t PaddingLimit(double slack) const;
 };
 
 vtkStandardNewMacro(vtkMultiresolutionPolyDataMapper);
@@ -301,6 +419,7 @@ void vtkMultiresolutionPolyDataMapper::ReleaseGraphicsResources(vtkWindow*)
   this->IBOBuildState.Clear();
   this->CellTextureBuildState.Clear();
   in.UploadedVersion = ~0ul;
+  in.LayoutValid = false;
   this->Modified();
 }
 
@@ -363,6 +482,8 @@ void vtkMultiresolutionPolyDataMapper::ReadObjects(vtkDataObject* input)
   in.StaticTriangles.clear();
   in.StaticTriangleCells.clear();
   in.Merged = nullptr;
+  in.LayoutValid = false; // other objects: the next render lays the index buffer out
+  in.CompactValid = false;
   in.Input = input;
   in.InputTime = input ? input->GetMTime() : 0;
   ++in.ResolutionVersion;
@@ -825,12 +946,40 @@ vtkMTimeType vtkMultiresolutionPolyDataMapper::GetVertexBufferUploadTime(const c
 
 vtkIdType vtkMultiresolutionPolyDataMapper::GetLastIndexCount() const
 {
-  return static_cast<vtkIdType>(this->Internal->IndexCount);
+  const Internals& in = *this->Internal;
+  return in.LayoutValid ? static_cast<vtkIdType>(in.PerPrimitive * in.Used) : 0;
 }
 
 const unsigned int* vtkMultiresolutionPolyDataMapper::GetLastIndices() const
 {
-  return this->Internal->Indices.data();
+  // The objects' slots without their padding, in object order (diagnostics:
+  // built on demand, may allocate).
+  Internals& in = *this->Internal;
+  if (!in.CompactValid)
+  {
+    in.CompactIndices.clear();
+    for (const auto& object : in.Objects)
+    {
+      if (in.LayoutValid && object.SlotUsed > 0)
+      {
+        const uint32_t* slot = in.Indices.data() + in.PerPrimitive * object.SlotStart;
+        in.CompactIndices.insert(
+          in.CompactIndices.end(), slot, slot + in.PerPrimitive * object.SlotUsed);
+      }
+    }
+    in.CompactValid = true;
+  }
+  return in.CompactIndices.data();
+}
+
+vtkIdType vtkMultiresolutionPolyDataMapper::GetIndexBufferRelayoutCount() const
+{
+  return this->Internal->RelayoutCount;
+}
+
+bool vtkMultiresolutionPolyDataMapper::GetObjectRewritten(vtkIdType i) const
+{
+  return this->IsValidObject(i) && this->Internal->Objects[i].Rewritten;
 }
 
 //------------------------------------------------------------------------------
@@ -963,6 +1112,7 @@ void vtkMultiresolutionPolyDataMapper::RenderPiece(vtkRenderer* ren, vtkActor* a
     // Nothing to draw (empty input or no polydata leaf).
     this->RenderedTriangles = 0;
     this->RenderedVertices = 0;
+    this->NumberOfPaddingPrimitives = 0;
     for (auto& object : in.Objects)
     {
       object.RenderedTriangles = 0;
@@ -976,6 +1126,10 @@ void vtkMultiresolutionPolyDataMapper::RenderPiece(vtkRenderer* ren, vtkActor* a
   this->IndexBytesUploaded = 0;
   this->CellDataBytesUploaded = 0;
   this->IndexUpdateTime = 0.0;
+  for (auto& object : in.Objects)
+  {
+    object.Rewritten = false;
+  }
 
   // As vtkOpenGLPolyDataMapper::RenderPiece, on the merged leaves.
   this->UpdateCameraShiftScale(ren, act);
@@ -992,6 +1146,9 @@ void vtkMultiresolutionPolyDataMapper::RenderPiece(vtkRenderer* ren, vtkActor* a
     this->NumberOfDrawCalls += this->Primitives[i].IBO->IndexCount > 0;
     this->NumberOfDrawCalls += this->SelectionPrimitives[i].IBO->IndexCount > 0;
   }
+  this->NumberOfPaddingPrimitives = this->Primitives[PrimitiveTris].IBO->IndexCount > 0
+    ? static_cast<vtkIdType>(in.Tail - in.Used)
+    : 0;
 }
 
 //------------------------------------------------------------------------------
@@ -1189,7 +1346,11 @@ void vtkMultiresolutionPolyDataMapper::RefineObjects(vtkRenderer* ren, vtkActor*
     object.Splits = statistics.Splits;
     object.Merges = statistics.Merges;
     this->RefinementTime += object.RefinementTime;
-    changed = changed || statistics.Splits > 0 || statistics.Merges > 0;
+    if (statistics.Splits > 0 || statistics.Merges > 0)
+    {
+      ++object.FrontVersion; // its slot is rewritten, the others' are not
+      changed = true;
+    }
   }
   if (changed)
   {
@@ -1213,9 +1374,9 @@ void vtkMultiresolutionPolyDataMapper::BuildBufferObjects(vtkRenderer* ren, vtkA
   Internals& in = *this->Internal;
   if (in.OnlyIndicesChanged)
   {
-    // Vertex buffers stay as uploaded; only the index buffer changes.
+    // Vertex buffers stay as uploaded; only the slots of changed objects are rewritten.
     in.OnlyIndicesChanged = false;
-    this->FillIndexBuffer(ren, act);
+    this->FillIndexBuffer(ren, act, false);
     return;
   }
   if (this->ColorByResolution && !in.ResolutionColors && in.TotalVertices > 0)
@@ -1247,8 +1408,8 @@ void vtkMultiresolutionPolyDataMapper::BuildCellTextures(
   vtkRenderer*, vtkActor*, vtkCellArray* prims[4], int representation)
 {
   // Only the cell map here, and only for the vertices, lines and strips of
-  // non-TOM leaves: the textures follow the drawn primitives and are uploaded
-  // with the index buffer (UploadCellTextures).
+  // non-TOM leaves: the textures follow the index buffer's slots and are
+  // written with them (AllocateCellTextures, UploadCellTexels).
   if ((this->HaveCellScalars || this->HaveCellNormals) && this->Internal->MergedHasOtherCells)
   {
     this->CellCellMap->Update(prims, representation, this->CurrentInput->GetPoints());
@@ -1272,256 +1433,722 @@ void vtkMultiresolutionPolyDataMapper::BuildIBO(vtkRenderer* ren, vtkActor* act,
   // Edge flags are per full-resolution primitive; without them every
   // triangle edge is drawn, which is right for triangle meshes.
   this->EdgeValues.clear();
-  this->FillIndexBuffer(ren, act);
+  this->FillIndexBuffer(ren, act, true);
 }
 
 //------------------------------------------------------------------------------
-void vtkMultiresolutionPolyDataMapper::FillIndexBuffer(vtkRenderer* ren, vtkActor* act)
+// Index slots. The triangle primitive's index buffer holds one slot per
+// object, in primitives of the drawn representation (triangles, lines or
+// points): the object's primitives, then degenerate ones (all indices one
+// vertex: no fragments) as room to grow. gl_PrimitiveID counts the degenerate
+// primitives too, so the cell textures follow the same layout (texel = slot
+// position). An update rewrites only the objects whose content changed, in
+// their slot, and uploads only those ranges; an object that outgrows its slot
+// grows into the hole or end after it, or moves to a hole or the end; one that
+// shrinks far below it gives the rest back. Unused ranges (holes) are
+// degenerate. The whole buffer is laid out again (compacted) only when no
+// room is left or padding exceeds its limit.
+
+Content vtkMultiresolutionPolyDataMapper::Internals::Describe(
+  const Object& object, bool viewDependent) const
+{
+  Content content;
+  if (!(object.Resolution > 0.0))
+  {
+    content.Kind = ContentKind::Culled;
+  }
+  else if (object.Refinement && viewDependent)
+  {
+    content.Kind = ContentKind::Front;
+    content.Key = object.FrontVersion;
+  }
+  else if (object.IsTOM)
+  {
+    content.Kind = ContentKind::Prefix;
+    content.Key = object.Traversal.GetVertexCountForTriangles(
+      object.Traversal.GetTrianglesForResolution(object.Resolution));
+  }
+  else
+  {
+    content.Kind = ContentKind::Whole;
+  }
+  return content;
+}
+
+size_t vtkMultiresolutionPolyDataMapper::Internals::Stage(Object& object, const Content& content)
+{
+  const bool surface = this->Representation == VTK_SURFACE;
+  const bool points = this->Representation == VTK_POINTS && !this->Corners;
+  size_t count = 0;
+  switch (content.Kind)
+  {
+    case ContentKind::Front:
+    {
+      const size_t triangles = object.Refinement->GetNumberOfDisplayTriangles();
+      count = points ? object.Refinement->GetNumberOfDisplayVertices()
+                     : (surface ? 1 : 3) * triangles;
+      break;
+    }
+    case ContentKind::Prefix:
+    {
+      // The prefix's size is known once extracted (into Scratch, then copied
+      // with the object's vertex offset into its slot).
+      const auto vertexCount = static_cast<uint32_t>(content.Key);
+      if (points)
+      {
+        this->StagedTriangles = object.Traversal.Extract(vertexCount, nullptr, 0); // counts only
+        count = vertexCount;
+      }
+      else
+      {
+        this->StagedTriangles = object.Traversal.Extract(
+          vertexCount, this->Scratch.data(), static_cast<uint32_t>(this->Scratch.size() / 3));
+        count = (surface ? 1 : 3) * static_cast<size_t>(this->StagedTriangles);
+      }
+      break;
+    }
+    case ContentKind::Whole:
+      count = surface ? static_cast<size_t>(object.NumberOfTriangles)
+                      : static_cast<size_t>(object.PolyConnectivity);
+      break;
+    default:
+      break;
+  }
+  // Never more than at full resolution, what the buffers were sized for
+  // (valid data never needs the clamp).
+  return std::min(count, object.FullPrimitives);
+}
+
+void vtkMultiresolutionPolyDataMapper::Internals::Emit(const Object& object,
+  const Content& content, size_t used, uint32_t* out, vtkIdType* cells, vtkCellArray* polys) const
+{
+  const auto base = static_cast<uint32_t>(object.VertexOffset);
+  const vtkIdType firstCell = this->PolyCellBase + object.PolyOffset;
+  // Cell data: one cell per primitive; a triangle is 3 lines or 3 corner points.
+  const size_t perTriangle = this->Representation == VTK_SURFACE ? 1 : 3;
+  auto addCells = [&](vtkIdType cell, size_t count)
+  {
+    for (size_t k = 0; k < count; ++k)
+    {
+      *cells++ = cell;
+    }
+  };
+  const bool points = this->Representation == VTK_POINTS && !this->Corners;
+  if (content.Kind == ContentKind::Front)
+  {
+    const timecritical::ViewDependentRefinement& front = *object.Refinement;
+    const auto triangles = static_cast<uint32_t>(
+      std::min<size_t>(front.GetNumberOfDisplayTriangles(), used / perTriangle));
+    if (this->Representation == VTK_WIREFRAME)
+    {
+      timecritical::WriteTriangleEdges(front.GetTriangles(), triangles, base, out);
+    }
+    else if (points)
+    {
+      WriteDisplayVertices(front, base, out);
+    }
+    else
+    {
+      front.CopyTriangles(out, triangles, base);
+    }
+    if (cells)
+    {
+      // TOM triangle t is cell t of the leaf.
+      const uint32_t* ids = front.GetTriangleIds();
+      for (uint32_t t = 0; t < triangles; ++t)
+      {
+        addCells(firstCell + ids[t], perTriangle);
+      }
+    }
+  }
+  else if (content.Kind == ContentKind::Prefix)
+  {
+    const auto triangles =
+      static_cast<uint32_t>(std::min<size_t>(this->StagedTriangles, used / perTriangle));
+    const uint32_t* staged = this->Scratch.data();
+    if (this->Representation == VTK_WIREFRAME)
+    {
+      timecritical::WriteTriangleEdges(staged, triangles, base, out);
+    }
+    else if (points)
+    {
+      timecritical::WriteVertexRange(static_cast<size_t>(content.Key), base, out);
+    }
+    else
+    {
+      const size_t count = 3 * static_cast<size_t>(triangles);
+      for (size_t k = 0; k < count; ++k)
+      {
+        out[k] = staged[k] + base;
+      }
+    }
+    if (cells)
+    {
+      for (uint32_t t = 0; t < triangles; ++t)
+      {
+        addCells(firstCell + t, perTriangle);
+      }
+    }
+  }
+  else if (content.Kind == ContentKind::Whole)
+  {
+    // Not a TOM: full resolution, in VTK's layout per representation.
+    if (this->Representation == VTK_SURFACE)
+    {
+      const size_t count = 3 * static_cast<size_t>(object.NumberOfTriangles);
+      const uint32_t* src = this->StaticTriangles.data() + 3 * object.TriangleStart;
+      std::copy(src, src + count, out);
+      if (cells)
+      {
+        const uint32_t* ids = this->StaticTriangleCells.data() + object.TriangleStart;
+        for (vtkIdType t = 0; t < object.NumberOfTriangles; ++t)
+        {
+          addCells(firstCell + ids[t], 1);
+        }
+      }
+    }
+    else
+    {
+      vtkIdType npts = 0;
+      const vtkIdType* ids = nullptr;
+      for (vtkIdType c = 0; c < object.NumberOfPolys; ++c)
+      {
+        polys->GetCellAtId(object.PolyOffset + c, npts, ids);
+        for (vtkIdType i = 0; i < npts; ++i)
+        {
+          *out++ = static_cast<uint32_t>(ids[i]);
+          if (this->Representation == VTK_WIREFRAME)
+          {
+            *out++ = static_cast<uint32_t>(ids[i + 1 < npts ? i + 1 : 0]);
+          }
+        }
+        if (cells)
+        {
+          addCells(firstCell + c, static_cast<size_t>(npts));
+        }
+      }
+    }
+  }
+}
+
+void vtkMultiresolutionPolyDataMapper::Internals::SetRenderedCounts(
+  Object& object, const Content& content) const
+{
+  switch (content.Kind)
+  {
+    case ContentKind::Front:
+      object.RenderedTriangles = object.Refinement->GetNumberOfDisplayTriangles();
+      object.RenderedVertices = object.Refinement->GetNumberOfDisplayVertices();
+      break;
+    case ContentKind::Prefix:
+      object.RenderedTriangles = this->StagedTriangles;
+      object.RenderedVertices = static_cast<vtkIdType>(content.Key);
+      break;
+    case ContentKind::Whole:
+      object.RenderedTriangles = object.NumberOfTriangles;
+      object.RenderedVertices = object.NumberOfVertices;
+      break;
+    default:
+      object.RenderedTriangles = 0;
+      object.RenderedVertices = 0;
+      break;
+  }
+}
+
+size_t vtkMultiresolutionPolyDataMapper::Internals::SlotSizeFor(
+  size_t used, size_t full, double slack) const
+{
+  if (used == 0 || !this->CanPad)
+  {
+    return used;
+  }
+  const size_t extra = slack > 0.0 ? static_cast<size_t>(slack * used) + MinimumSlack : 0;
+  return std::max(used, std::min(full, used + extra));
+}
+
+bool vtkMultiresolutionPolyDataMapper::Internals::Allocate(size_t size, size_t& start, bool& fresh)
+{
+  // First fit among the holes (degenerate already), else past the end.
+  for (auto hole = this->Holes.begin(); hole != this->Holes.end(); ++hole)
+  {
+    if (hole->Size >= size)
+    {
+      start = hole->Start;
+      hole->Start += size;
+      hole->Size -= size;
+      if (hole->Size == 0)
+      {
+        this->Holes.erase(hole);
+      }
+      fresh = false;
+      return true;
+    }
+  }
+  if (this->Tail + size > this->Capacity)
+  {
+    return false;
+  }
+  start = this->Tail;
+  this->Tail += size;
+  fresh = true; // never written in this layout
+  return true;
+}
+
+void vtkMultiresolutionPolyDataMapper::Internals::Release(size_t start, size_t size)
+{
+  if (size == 0)
+  {
+    return;
+  }
+  // Holes stay sorted and merged, so there are at most objects + 1 of them
+  // (the capacity reserved at layout: inserting never allocates).
+  auto hole = std::lower_bound(this->Holes.begin(), this->Holes.end(), start,
+    [](const Range& range, size_t value) { return range.Start < value; });
+  if (hole != this->Holes.begin() && std::prev(hole)->Start + std::prev(hole)->Size == start)
+  {
+    --hole;
+    hole->Size += size;
+  }
+  else
+  {
+    hole = this->Holes.insert(hole, Range{ start, size });
+  }
+  const auto next = std::next(hole);
+  if (next != this->Holes.end() && hole->Start + hole->Size == next->Start)
+  {
+    hole->Size += next->Size;
+    hole = std::prev(this->Holes.erase(next));
+  }
+  if (hole->Start + hole->Size == this->Tail)
+  {
+    // A hole at the end is simply not drawn.
+    this->Tail = hole->Start;
+    this->Holes.erase(hole);
+  }
+}
+
+bool vtkMultiresolutionPolyDataMapper::Internals::GrowInPlace(
+  Object& object, size_t size, bool& fresh)
+{
+  const size_t end = object.SlotStart + object.SlotSize;
+  const size_t extra = size - object.SlotSize;
+  if (object.SlotSize == 0)
+  {
+    return false;
+  }
+  if (end == this->Tail)
+  {
+    if (object.SlotStart + size > this->Capacity)
+    {
+      return false;
+    }
+    this->Tail = object.SlotStart + size;
+    object.SlotSize = size;
+    fresh = true;
+    return true;
+  }
+  auto hole = std::lower_bound(this->Holes.begin(), this->Holes.end(), end,
+    [](const Range& range, size_t value) { return range.Start < value; });
+  if (hole == this->Holes.end() || hole->Start != end || hole->Size < extra)
+  {
+    return false;
+  }
+  hole->Start += extra;
+  hole->Size -= extra;
+  if (hole->Size == 0)
+  {
+    this->Holes.erase(hole);
+  }
+  object.SlotSize = size;
+  fresh = false;
+  return true;
+}
+
+void vtkMultiresolutionPolyDataMapper::Internals::FillDegenerate(
+  size_t start, size_t count, uint32_t vertex)
+{
+  if (count == 0)
+  {
+    return;
+  }
+  uint32_t* out = this->Indices.data() + this->PerPrimitive * start;
+  std::fill(out, out + this->PerPrimitive * count, vertex);
+  this->DirtyIndices.push_back(Range{ start, count });
+}
+
+void vtkMultiresolutionPolyDataMapper::Internals::WriteSlot(Object& object,
+  const Content& content, size_t used, size_t extent, vtkCellArray* polys)
+{
+  // extent: how much of the slot may hold anything but degenerate primitives
+  // (its old content, or never written).
+  if (used > 0)
+  {
+    this->Emit(object, content, used,
+      this->Indices.data() + this->PerPrimitive * object.SlotStart,
+      this->CellData ? this->PrimitiveCells.data() + object.SlotStart : nullptr, polys);
+    this->DirtyIndices.push_back(Range{ object.SlotStart, used });
+    if (this->CellData)
+    {
+      this->DirtyTexels.push_back(Range{ object.SlotStart, used });
+    }
+  }
+  if (extent > used)
+  {
+    this->FillDegenerate(
+      object.SlotStart + used, extent - used, static_cast<uint32_t>(object.VertexOffset));
+  }
+  this->Used = this->Used - object.SlotUsed + used;
+  object.Rewritten = object.Rewritten || used > 0 || object.SlotUsed > 0;
+  object.SlotUsed = used;
+  object.Written = content;
+}
+
+void vtkMultiresolutionPolyDataMapper::Internals::ClearSlot(Object& object)
+{
+  this->FillDegenerate(
+    object.SlotStart, object.SlotUsed, static_cast<uint32_t>(object.VertexOffset));
+  object.Rewritten = object.Rewritten || object.SlotUsed > 0;
+  this->Used -= object.SlotUsed;
+  object.SlotUsed = 0;
+  this->Release(object.SlotStart, object.SlotSize);
+  this->SlottedObjects -= object.SlotSize > 0 ? 1 : 0;
+  object.SlotStart = 0;
+  object.SlotSize = 0;
+}
+
+bool vtkMultiresolutionPolyDataMapper::Internals::Update(
+  Object& object, const Content& content, double slack, vtkCellArray* polys)
+{
+  const size_t used = this->Stage(object, content);
+  if (used == 0)
+  {
+    this->ClearSlot(object);
+    object.Written = content;
+    return true;
+  }
+  if (!this->CanPad && used != object.SlotSize)
+  {
+    return false; // points: no degenerate point, every slot fits exactly
+  }
+  size_t extent = object.SlotUsed;
+  if (used > object.SlotSize)
+  {
+    const size_t size = this->SlotSizeFor(used, object.FullPrimitives, slack);
+    bool fresh = false;
+    if (!this->GrowInPlace(object, size, fresh))
+    {
+      this->ClearSlot(object);
+      size_t start = 0;
+      if (!this->Allocate(size, start, fresh))
+      {
+        return false;
+      }
+      object.SlotStart = start;
+      object.SlotSize = size;
+      ++this->SlottedObjects;
+      extent = 0;
+    }
+    if (fresh)
+    {
+      extent = size;
+    }
+  }
+  this->WriteSlot(object, content, used, extent, polys);
+  // Far below its slot: the end goes back (it is degenerate already).
+  const size_t size = this->SlotSizeFor(used, object.FullPrimitives, slack);
+  if (object.SlotSize > 2 * size)
+  {
+    this->Release(object.SlotStart + size, object.SlotSize - size);
+    object.SlotSize = size;
+  }
+  return true;
+}
+
+void vtkMultiresolutionPolyDataMapper::Internals::LayOut(
+  bool viewDependent, double slack, vtkCellArray* polys)
+{
+  this->DirtyIndices.clear();
+  this->DirtyTexels.clear();
+  this->Holes.clear();
+  this->Tail = 0;
+  this->Used = 0;
+  this->SlottedObjects = 0;
+  for (auto& object : this->Objects)
+  {
+    const Content content = this->Describe(object, viewDependent);
+    const size_t used = this->Stage(object, content);
+    object.SlotStart = this->Tail;
+    object.SlotSize = this->SlotSizeFor(used, object.FullPrimitives, slack);
+    object.SlotUsed = 0;
+    this->SlottedObjects += object.SlotSize > 0 ? 1 : 0;
+    this->Tail += object.SlotSize; // slots never exceed full resolution: fits the capacity
+    this->WriteSlot(object, content, used, object.SlotSize, polys);
+    this->SetRenderedCounts(object, content);
+  }
+  // Everything drawn is uploaded.
+  this->DirtyIndices.clear();
+  this->DirtyTexels.clear();
+  this->DirtyIndices.push_back(Range{ 0, this->Tail });
+  if (this->CellData)
+  {
+    this->DirtyTexels.push_back(Range{ 0, this->Tail });
+  }
+  ++this->RelayoutCount;
+}
+
+size_t vtkMultiresolutionPolyDataMapper::Internals::PaddingLimit(double slack) const
+{
+  // Twice what a fresh layout leaves; with no slack, none.
+  return slack > 0.0
+    ? 2 * (static_cast<size_t>(slack * this->Used) + MinimumSlack * this->SlottedObjects)
+    : 0;
+}
+
+void vtkMultiresolutionPolyDataMapper::Internals::Compact(double slack)
+{
+  // Slots move down in buffer order over the holes, their padding trimmed to
+  // a fresh layout's: the content is moved, not extracted again.
+  this->SlotOrder.clear();
+  for (size_t i = 0; i < this->Objects.size(); ++i)
+  {
+    if (this->Objects[i].SlotSize > 0)
+    {
+      this->SlotOrder.push_back(static_cast<uint32_t>(i)); // capacity reserved at layout
+    }
+  }
+  std::sort(this->SlotOrder.begin(), this->SlotOrder.end(), [this](uint32_t a, uint32_t b)
+    { return this->Objects[a].SlotStart < this->Objects[b].SlotStart; });
+  size_t tail = 0;
+  size_t moved = SIZE_MAX; // first primitive that changes: uploaded from there on
+  const size_t k = this->PerPrimitive;
+  for (uint32_t i : this->SlotOrder)
+  {
+    Object& object = this->Objects[i];
+    // Never larger than now, so that every slot moves down (or stays).
+    const size_t size = std::min(object.SlotSize,
+      this->SlotSizeFor(object.SlotUsed, object.FullPrimitives, slack));
+    if (object.SlotStart != tail)
+    {
+      // [SlotUsed, size) is degenerate already.
+      std::memmove(this->Indices.data() + k * tail, this->Indices.data() + k * object.SlotStart,
+        sizeof(uint32_t) * k * size);
+      if (this->CellData)
+      {
+        std::memmove(this->PrimitiveCells.data() + tail,
+          this->PrimitiveCells.data() + object.SlotStart, sizeof(vtkIdType) * object.SlotUsed);
+      }
+      object.Rewritten = true;
+      moved = std::min(moved, tail);
+    }
+    object.SlotStart = tail;
+    object.SlotSize = size;
+    tail += size;
+  }
+  this->Holes.clear();
+  this->Tail = tail;
+  if (moved < tail)
+  {
+    // Ranges rewritten before (by this update) below `moved` stay dirty.
+    this->DirtyIndices.push_back(Range{ moved, tail - moved });
+    if (this->CellData)
+    {
+      this->DirtyTexels.push_back(Range{ moved, tail - moved });
+    }
+  }
+  ++this->RelayoutCount;
+}
+
+//------------------------------------------------------------------------------
+void vtkMultiresolutionPolyDataMapper::PrepareLayout(vtkRenderer* ren, vtkActor* act)
+{
+  // A full rebuild: representation, cell data and the capacity of every
+  // buffer for this input; the buffers are (re)allocated at that capacity.
+  Internals& in = *this->Internal;
+  vtkProperty* prop = act->GetProperty();
+  in.Representation = prop->GetRepresentation();
+  in.CellData = this->HaveCellScalars || this->HaveCellNormals;
+  // Points of TOMs are their active vertices, unless cell data needs one
+  // primitive per triangle corner (VTK's layout for points).
+  in.Corners = in.Representation == VTK_POINTS && in.CellData;
+  in.PerPrimitive = in.Representation == VTK_WIREFRAME ? 2 : in.Representation == VTK_POINTS ? 1 : 3;
+  // A point with all indices equal is still a point: points get no padding.
+  in.CanPad = in.Representation != VTK_POINTS;
+  in.VertexVisibility = prop->GetVertexVisibility() != 0;
+  in.Capacity = 0;
+  for (auto& object : in.Objects)
+  {
+    const auto triangles = static_cast<size_t>(object.NumberOfTriangles);
+    if (!object.IsTOM)
+    {
+      object.FullPrimitives = in.Representation == VTK_SURFACE
+        ? triangles
+        : static_cast<size_t>(object.PolyConnectivity);
+    }
+    else if (in.Representation == VTK_POINTS && !in.Corners)
+    {
+      object.FullPrimitives = static_cast<size_t>(object.NumberOfVertices);
+    }
+    else
+    {
+      object.FullPrimitives = (in.Representation == VTK_SURFACE ? 1 : 3) * triangles;
+    }
+    in.Capacity += object.FullPrimitives;
+    object.SlotStart = object.SlotSize = object.SlotUsed = 0;
+    object.Written = Content();
+  }
+  Grow(in.Indices, in.PerPrimitive * in.Capacity);
+  if (in.CellData)
+  {
+    Grow(in.PrimitiveCells, in.Capacity);
+  }
+  // Bounds that keep every per-frame insertion within reserved capacity.
+  in.Holes.reserve(in.Objects.size() + 2);
+  in.SlotOrder.reserve(in.Objects.size());
+  in.DirtyIndices.reserve(3 * in.Objects.size() + 8);
+  in.DirtyTexels.reserve(in.Objects.size() + 8);
+  if (in.VertexVisibility)
+  {
+    Grow(in.VertexIndices, static_cast<size_t>(in.TotalVertices));
+  }
+
+  vtkOpenGLIndexBufferObject* ibo = this->Primitives[PrimitiveTris].IBO;
+  if (in.Capacity > 0)
+  {
+    // Allocated once at full capacity, written with glBufferSubData.
+    ibo->GenerateBuffer(vtkOpenGLBufferObject::ElementArrayBuffer);
+    ibo->Bind();
+    glBufferData(GL_ELEMENT_ARRAY_BUFFER,
+      static_cast<GLsizeiptr>(sizeof(uint32_t) * in.PerPrimitive * in.Capacity), nullptr,
+      GL_DYNAMIC_DRAW);
+    ibo->Release();
+  }
+  ibo->IndexCount = 0;
+  if (in.CellData)
+  {
+    this->AllocateCellTextures(ren);
+  }
+  in.LayoutValid = true;
+}
+
+void vtkMultiresolutionPolyDataMapper::FillIndexBuffer(
+  vtkRenderer* ren, vtkActor* act, bool rebuild)
 {
   Internals& in = *this->Internal;
   const auto startTime = std::chrono::steady_clock::now();
   in.UploadedVersion = in.ResolutionVersion;
   ++in.IndexBufferBuildCount;
-  vtkProperty* prop = act->GetProperty();
-  const int representation = prop->GetRepresentation();
-  const bool cellData = this->HaveCellScalars || this->HaveCellNormals;
-  // Points of TOMs are their active vertices, unless cell data needs one
-  // primitive per triangle corner (VTK's layout for points).
-  const bool corners = representation == VTK_POINTS && cellData;
-  const size_t capacity = representation == VTK_WIREFRAME ? in.MaxWireIndices
-    : representation == VTK_POINTS                        ? in.MaxPointIndices
-                                                          : in.MaxSurfaceIndices;
-  Grow(in.Indices, capacity);
-  if (cellData)
-  {
-    Grow(in.PrimitiveCells, capacity);
-  }
-  const bool vertexVisibility = prop->GetVertexVisibility() != 0;
-  if (vertexVisibility)
-  {
-    Grow(in.VertexIndices, static_cast<size_t>(in.TotalVertices));
-  }
+  in.CompactValid = false;
   vtkCellArray* polys = this->CurrentInput->GetPolys();
+  bool layOut = rebuild || !in.LayoutValid;
+  if (layOut)
+  {
+    this->PrepareLayout(ren, act);
+  }
+  else
+  {
+    in.DirtyIndices.clear();
+    in.DirtyTexels.clear();
+    bool compacted = false;
+    for (auto& object : in.Objects)
+    {
+      const Content content = in.Describe(object, this->ViewDependentRefinement);
+      if (content == object.Written)
+      {
+        continue; // unchanged: neither extracted nor uploaded
+      }
+      if (!in.Update(object, content, this->IndexSlack, polys))
+      {
+        // No room left: compact and try again; points (which cannot pad)
+        // and a buffer full even then are laid out again from scratch.
+        if (!in.CanPad || compacted)
+        {
+          layOut = true;
+          break;
+        }
+        in.Compact(this->IndexSlack);
+        compacted = true;
+        if (!in.Update(object, content, this->IndexSlack, polys))
+        {
+          layOut = true;
+          break;
+        }
+      }
+      in.SetRenderedCounts(object, content);
+    }
+    // Padding costs drawing time: compacted when it exceeds its limit.
+    if (!layOut && in.Tail - in.Used > in.PaddingLimit(this->IndexSlack))
+    {
+      in.Compact(this->IndexSlack);
+    }
+  }
+  if (layOut)
+  {
+    in.LayOut(this->ViewDependentRefinement, this->IndexSlack, polys);
+  }
 
-  uint32_t* indices = in.Indices.data();
-  size_t n = 0;          // indices written
-  size_t primitives = 0; // primitives written (for cell data)
-  size_t vertexIndices = 0;
+  // Upload the rewritten ranges.
+  CoalesceRanges(in.DirtyIndices, in.Tail);
+  CoalesceRanges(in.DirtyTexels, in.Tail);
+  vtkOpenGLIndexBufferObject* ibo = this->Primitives[PrimitiveTris].IBO;
+  if (!in.DirtyIndices.empty())
+  {
+    ibo->Bind();
+    const size_t bytes = sizeof(uint32_t) * in.PerPrimitive;
+    for (const Range& range : in.DirtyIndices)
+    {
+      glBufferSubData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLintptr>(bytes * range.Start),
+        static_cast<GLsizeiptr>(bytes * range.Size),
+        in.Indices.data() + in.PerPrimitive * range.Start);
+      this->IndexBytesUploaded += static_cast<vtkIdType>(bytes * range.Size);
+    }
+    ibo->Release();
+  }
+  // Only padding left (everything culled): no draw call.
+  ibo->IndexCount = in.Used > 0 ? in.PerPrimitive * in.Tail : 0;
+  for (const Range& range : in.DirtyTexels)
+  {
+    this->UploadCellTexels(in.TexelBase + range.Start, in.TexelBase + range.Start + range.Size);
+  }
+
   this->RenderedTriangles = 0;
   this->RenderedVertices = 0;
-  auto addCells = [&](vtkIdType cell, size_t count)
-  {
-    for (size_t k = 0; k < count; ++k)
-    {
-      in.PrimitiveCells[primitives++] = cell;
-    }
-  };
-
   for (auto& object : in.Objects)
   {
-    object.RenderedTriangles = 0;
-    object.RenderedVertices = 0;
-    if (!(object.Resolution > 0.0))
-    {
-      continue; // culled
-    }
-    ++this->NumberOfRewrittenObjects;
-    const uint32_t base = static_cast<uint32_t>(object.VertexOffset);
-    const vtkIdType firstCell = in.PolyCellBase + object.PolyOffset;
-    if (object.Refinement && this->ViewDependentRefinement)
-    {
-      // The view-dependent front, refined by RefineObjects() for this render.
-      const timecritical::ViewDependentRefinement& front = *object.Refinement;
-      const uint32_t triangles = front.GetNumberOfDisplayTriangles();
-      if (representation == VTK_WIREFRAME)
-      {
-        timecritical::WriteTriangleEdges(front.GetTriangles(), triangles, base, indices + n);
-        n += 6 * static_cast<size_t>(triangles);
-      }
-      else if (representation == VTK_POINTS && !corners)
-      {
-        n += WriteDisplayVertices(front, base, indices + n);
-      }
-      else
-      {
-        front.CopyTriangles(indices + n, static_cast<uint32_t>((capacity - n) / 3), base);
-        n += 3 * static_cast<size_t>(triangles);
-      }
-      if (cellData)
-      {
-        // TOM triangle t is cell t of the leaf.
-        const size_t perTriangle = representation == VTK_SURFACE ? 1 : 3;
-        const uint32_t* ids = front.GetTriangleIds();
-        for (uint32_t t = 0; t < triangles; ++t)
-        {
-          addCells(firstCell + ids[t], perTriangle);
-        }
-      }
-      object.RenderedTriangles = triangles;
-      object.RenderedVertices = front.GetNumberOfDisplayVertices();
-    }
-    else if (object.IsTOM)
-    {
-      const timecritical::TOMTraversal& traversal = object.Traversal;
-      const uint32_t vertexCount = traversal.GetVertexCountForTriangles(
-        traversal.GetTrianglesForResolution(object.Resolution));
-      uint32_t triangles = 0;
-      if (representation == VTK_WIREFRAME)
-      {
-        triangles = traversal.Extract(
-          vertexCount, in.Scratch.data(), static_cast<uint32_t>(in.Scratch.size() / 3));
-        timecritical::WriteTriangleEdges(in.Scratch.data(), triangles, base, indices + n);
-        n += 6 * static_cast<size_t>(triangles);
-      }
-      else if (representation == VTK_POINTS && !corners)
-      {
-        triangles = traversal.Extract(vertexCount, nullptr, 0); // counts only
-        timecritical::WriteVertexRange(vertexCount, base, indices + n);
-        n += vertexCount;
-      }
-      else
-      {
-        // Straight into the index buffer, then shifted to merged point ids.
-        uint32_t* out = indices + n;
-        triangles = traversal.Extract(vertexCount, out, static_cast<uint32_t>((capacity - n) / 3));
-        const size_t count = 3 * static_cast<size_t>(triangles);
-        for (size_t k = 0; k < count; ++k)
-        {
-          out[k] += base;
-        }
-        n += count;
-      }
-      if (cellData)
-      {
-        const size_t perTriangle = representation == VTK_SURFACE ? 1 : 3;
-        for (uint32_t t = 0; t < triangles; ++t)
-        {
-          addCells(firstCell + t, perTriangle);
-        }
-      }
-      object.RenderedTriangles = triangles;
-      object.RenderedVertices = vertexCount;
-    }
-    else
-    {
-      // Not a TOM: full resolution, in VTK's layout per representation.
-      if (representation == VTK_SURFACE)
-      {
-        const size_t count = 3 * static_cast<size_t>(object.NumberOfTriangles);
-        const uint32_t* src = in.StaticTriangles.data() + 3 * object.TriangleStart;
-        std::copy(src, src + count, indices + n);
-        n += count;
-        if (cellData)
-        {
-          const uint32_t* cells = in.StaticTriangleCells.data() + object.TriangleStart;
-          for (vtkIdType t = 0; t < object.NumberOfTriangles; ++t)
-          {
-            addCells(firstCell + cells[t], 1);
-          }
-        }
-      }
-      else
-      {
-        vtkIdType npts = 0;
-        const vtkIdType* ids = nullptr;
-        for (vtkIdType c = 0; c < object.NumberOfPolys; ++c)
-        {
-          polys->GetCellAtId(object.PolyOffset + c, npts, ids);
-          for (vtkIdType i = 0; i < npts; ++i)
-          {
-            indices[n++] = static_cast<uint32_t>(ids[i]);
-            if (representation == VTK_WIREFRAME)
-            {
-              indices[n++] = static_cast<uint32_t>(ids[i + 1 < npts ? i + 1 : 0]);
-            }
-          }
-          if (cellData)
-          {
-            addCells(firstCell + c, static_cast<size_t>(npts));
-          }
-        }
-      }
-      object.RenderedTriangles = object.NumberOfTriangles;
-      object.RenderedVertices = object.NumberOfVertices;
-    }
-    if (vertexVisibility && object.Refinement && this->ViewDependentRefinement)
-    {
-      vertexIndices +=
-        WriteDisplayVertices(*object.Refinement, base, in.VertexIndices.data() + vertexIndices);
-    }
-    else if (vertexVisibility)
-    {
-      const auto count = static_cast<size_t>(object.RenderedVertices);
-      timecritical::WriteVertexRange(count, base, in.VertexIndices.data() + vertexIndices);
-      vertexIndices += count;
-    }
     this->RenderedTriangles += object.RenderedTriangles;
     this->RenderedVertices += object.RenderedVertices;
-
-    if (in.ResolutionColors && this->ColorByResolution && object.Refinement &&
-      this->ViewDependentRefinement)
+    this->NumberOfRewrittenObjects += object.Rewritten ? 1 : 0;
+    if (object.Rewritten && object.Written.Kind != ContentKind::Culled)
     {
-      // Per vertex, by merge-tree level: only the display vertices are drawn,
-      // so the greys follow the front without being rewritten.
-      if (object.ColorLevel != ColorLevels)
-      {
-        object.ColorLevel = ColorLevels;
-        unsigned char* rgba = in.ResolutionColors->GetPointer(4 * object.VertexOffset);
-        const double levels = std::max<double>(object.LevelCount, 1);
-        for (vtkIdType v = 0; v < object.NumberOfVertices; ++v, rgba += 4)
-        {
-          const double finest = 1.0 - std::min<double>(object.Levels[v], levels) / levels;
-          rgba[0] = rgba[1] = rgba[2] =
-            GreyForLevel(static_cast<int>(std::lround(finest * (ColorLevels - 1))));
-          rgba[3] = 255;
-        }
-        object.ColorDirty = true;
-      }
-    }
-    else if (in.ResolutionColors && this->ColorByResolution)
-    {
-      const double fraction = object.NumberOfTriangles > 0
-        ? static_cast<double>(object.RenderedTriangles) / object.NumberOfTriangles
-        : 1.0;
-      const int level = static_cast<int>(std::lround(fraction * (ColorLevels - 1)));
-      if (level != object.ColorLevel)
-      {
-        object.ColorLevel = level;
-        const unsigned char grey = GreyForLevel(level);
-        unsigned char* rgba = in.ResolutionColors->GetPointer(4 * object.VertexOffset);
-        for (vtkIdType v = 0; v < object.NumberOfVertices; ++v, rgba += 4)
-        {
-          rgba[0] = rgba[1] = rgba[2] = grey;
-          rgba[3] = 255;
-        }
-        object.ColorDirty = true;
-      }
+      this->UpdateResolutionColor(&object - in.Objects.data());
     }
   }
 
-  in.IndexCount = n;
-  vtkOpenGLIndexBufferObject* ibo = this->Primitives[PrimitiveTris].IBO;
-  if (n > 0)
+  if (in.VertexVisibility)
   {
-    ibo->Upload(indices, n, vtkOpenGLBufferObject::ElementArrayBuffer);
-    this->IndexBytesUploaded += static_cast<vtkIdType>(4 * n);
-  }
-  ibo->IndexCount = n;
-
-  if (vertexVisibility)
-  {
+    // Vertices drawn as points over the surface (a second draw call): all rewritten.
+    size_t count = 0;
+    for (const auto& object : in.Objects)
+    {
+      const auto base = static_cast<uint32_t>(object.VertexOffset);
+      if (object.Written.Kind == ContentKind::Front)
+      {
+        count += WriteDisplayVertices(*object.Refinement, base, in.VertexIndices.data() + count);
+      }
+      else
+      {
+        const auto vertices = static_cast<size_t>(object.RenderedVertices);
+        timecritical::WriteVertexRange(vertices, base, in.VertexIndices.data() + count);
+        count += vertices;
+      }
+    }
     vtkOpenGLIndexBufferObject* vertexIBO = this->Primitives[PrimitiveVertices].IBO;
-    if (vertexIndices > 0)
+    if (count > 0)
     {
       vertexIBO->Upload(
-        in.VertexIndices.data(), vertexIndices, vtkOpenGLBufferObject::ElementArrayBuffer);
-      this->IndexBytesUploaded += static_cast<vtkIdType>(4 * vertexIndices);
+        in.VertexIndices.data(), count, vtkOpenGLBufferObject::ElementArrayBuffer);
+      this->IndexBytesUploaded += static_cast<vtkIdType>(sizeof(uint32_t) * count);
     }
-    vertexIBO->IndexCount = vertexIndices;
-  }
-  if (cellData)
-  {
-    this->UploadCellTextures(ren, primitives);
+    vertexIBO->IndexCount = count;
   }
   if (in.ResolutionColors && this->ColorByResolution)
   {
@@ -1531,46 +2158,150 @@ void vtkMultiresolutionPolyDataMapper::FillIndexBuffer(vtkRenderer* ren, vtkActo
     std::chrono::duration<double>(std::chrono::steady_clock::now() - startTime).count();
 }
 
+void vtkMultiresolutionPolyDataMapper::UpdateResolutionColor(vtkIdType i)
+{
+  Internals& in = *this->Internal;
+  if (!in.ResolutionColors || !this->ColorByResolution)
+  {
+    return;
+  }
+  Internals::Object& object = in.Objects[i];
+  if (object.Refinement && this->ViewDependentRefinement)
+  {
+    // Per vertex, by merge-tree level: only the display vertices are drawn,
+    // so the greys follow the front without being rewritten.
+    if (object.ColorLevel != ColorLevels)
+    {
+      object.ColorLevel = ColorLevels;
+      unsigned char* rgba = in.ResolutionColors->GetPointer(4 * object.VertexOffset);
+      const double levels = std::max<double>(object.LevelCount, 1);
+      for (vtkIdType v = 0; v < object.NumberOfVertices; ++v, rgba += 4)
+      {
+        const double finest = 1.0 - std::min<double>(object.Levels[v], levels) / levels;
+        rgba[0] = rgba[1] = rgba[2] =
+          GreyForLevel(static_cast<int>(std::lround(finest * (ColorLevels - 1))));
+        rgba[3] = 255;
+      }
+      object.ColorDirty = true;
+    }
+    return;
+  }
+  const double fraction = object.NumberOfTriangles > 0
+    ? static_cast<double>(object.RenderedTriangles) / object.NumberOfTriangles
+    : 1.0;
+  const int level = static_cast<int>(std::lround(fraction * (ColorLevels - 1)));
+  if (level != object.ColorLevel)
+  {
+    object.ColorLevel = level;
+    const unsigned char grey = GreyForLevel(level);
+    unsigned char* rgba = in.ResolutionColors->GetPointer(4 * object.VertexOffset);
+    for (vtkIdType v = 0; v < object.NumberOfVertices; ++v, rgba += 4)
+    {
+      rgba[0] = rgba[1] = rgba[2] = grey;
+      rgba[3] = 255;
+    }
+    object.ColorDirty = true;
+  }
+}
+
 //------------------------------------------------------------------------------
-void vtkMultiresolutionPolyDataMapper::UploadCellTextures(vtkRenderer* ren, size_t primitives)
+void vtkMultiresolutionPolyDataMapper::AllocateCellTextures(vtkRenderer* ren)
 {
   // VTK looks cell values up by gl_PrimitiveID, which counts the primitives
-  // actually drawn: with triangles dropped they no longer follow the cell
-  // ids, so the textures are rebuilt in drawn order. Vertices and lines (first)
-  // and strips (after the polygons) of non-TOM leaves keep VTK's layout.
+  // actually drawn, padding included: texel TexelBase + p holds the cell of
+  // index-buffer primitive p. Vertices and lines (first) and strips (after
+  // the polygons) of non-TOM leaves keep VTK's layout; they are written here,
+  // the slots' texels with their slots.
   Internals& in = *this->Internal;
-  vtkPolyData* poly = this->CurrentInput;
   vtkIdType* offsets = this->CellCellMap->GetPrimitiveOffsets();
   const size_t mapSize = this->CellCellMap->GetSize();
-  const size_t trisStart = in.MergedHasOtherCells ? static_cast<size_t>(offsets[2]) : 0;
-  const size_t stripsStart = in.MergedHasOtherCells ? static_cast<size_t>(offsets[3]) : 0;
-  const bool strips = in.MergedHasOtherCells && poly->GetNumberOfStrips() > 0;
-  size_t total = trisStart + primitives;
+  in.TexelBase = in.MergedHasOtherCells ? static_cast<size_t>(offsets[2]) : 0;
+  const bool strips = in.MergedHasOtherCells && this->CurrentInput->GetNumberOfStrips() > 0;
+  in.Texels = in.TexelBase + in.Capacity;
   if (strips)
   {
-    total = std::max(total, mapSize);
+    in.Texels = std::max(in.Texels, mapSize);
   }
-  total = std::max<size_t>(total, 1); // texture buffers may not be empty
+  in.Texels = std::max<size_t>(in.Texels, 1); // texture buffers may not be empty
+  vtkOpenGLRenderWindow* renWin = static_cast<vtkOpenGLRenderWindow*>(ren->GetRenderWindow());
+  const auto texels = static_cast<unsigned int>(in.Texels);
+
+  if (this->HaveCellScalars && this->Colors)
+  {
+    Grow(in.CellColors, 4 * in.Texels);
+    if (!this->CellScalarTexture)
+    {
+      this->CellScalarTexture = vtkTextureObject::New();
+      this->CellScalarBuffer = vtkOpenGLBufferObject::New();
+      this->CellScalarBuffer->SetType(vtkOpenGLBufferObject::TextureBuffer);
+    }
+    this->CellScalarTexture->SetContext(renWin);
+    this->CellScalarBuffer->GenerateBuffer(vtkOpenGLBufferObject::TextureBuffer);
+    this->CellScalarBuffer->Bind();
+    glBufferData(GL_TEXTURE_BUFFER, static_cast<GLsizeiptr>(4 * in.Texels), nullptr, GL_DYNAMIC_DRAW);
+    this->CellScalarBuffer->Release();
+    this->CellScalarTexture->CreateTextureBuffer(texels, 4, VTK_UNSIGNED_CHAR, this->CellScalarBuffer);
+  }
+  if (this->HaveCellNormals && this->CurrentInput->GetCellData()->GetNormals())
+  {
+    Grow(in.CellNormals, 4 * in.Texels);
+    if (!this->CellNormalTexture)
+    {
+      this->CellNormalTexture = vtkTextureObject::New();
+      this->CellNormalBuffer = vtkOpenGLBufferObject::New();
+      this->CellNormalBuffer->SetType(vtkOpenGLBufferObject::TextureBuffer);
+    }
+    this->CellNormalTexture->SetContext(renWin);
+    // Without float textures, normals as bytes, as VTK does.
+    in.FloatCellNormals =
+      renWin->GetDefaultTextureInternalFormat(VTK_FLOAT, 4, false, true, false) != 0;
+    if (!in.FloatCellNormals)
+    {
+      Grow(in.CellNormalBytes, 4 * in.Texels);
+    }
+    this->CellNormalBuffer->GenerateBuffer(vtkOpenGLBufferObject::TextureBuffer);
+    this->CellNormalBuffer->Bind();
+    glBufferData(GL_TEXTURE_BUFFER,
+      static_cast<GLsizeiptr>((in.FloatCellNormals ? 16 : 4) * in.Texels), nullptr, GL_DYNAMIC_DRAW);
+    this->CellNormalBuffer->Release();
+    this->CellNormalTexture->CreateTextureBuffer(texels, 4,
+      in.FloatCellNormals ? VTK_FLOAT : VTK_UNSIGNED_CHAR, this->CellNormalBuffer);
+  }
+  this->UploadCellTexels(0, in.TexelBase);
+  this->UploadCellTexels(in.TexelBase + in.Capacity, in.Texels);
+}
+
+void vtkMultiresolutionPolyDataMapper::UploadCellTexels(size_t begin, size_t end)
+{
+  Internals& in = *this->Internal;
+  end = std::min(end, in.Texels);
+  if (begin >= end)
+  {
+    return;
+  }
+  const size_t trisEnd = in.TexelBase + in.Capacity;
+  const bool strips = in.MergedHasOtherCells && this->CurrentInput->GetNumberOfStrips() > 0;
+  const size_t stripsStart =
+    strips ? static_cast<size_t>(this->CellCellMap->GetPrimitiveOffsets()[3]) : trisEnd;
+  const size_t mapSize = in.MergedHasOtherCells ? this->CellCellMap->GetSize() : 0;
   // Cell id of texel i.
   auto cellOf = [&](size_t i) -> vtkIdType
   {
-    if (i >= trisStart && i < trisStart + primitives && !(strips && i >= stripsStart))
+    if (i >= in.TexelBase && i < std::min(trisEnd, stripsStart))
     {
-      return in.PrimitiveCells[i - trisStart];
+      return in.PrimitiveCells[i - in.TexelBase];
     }
     return i < mapSize ? this->CellCellMap->GetValue(i) : 0;
   };
-  vtkOpenGLRenderWindow* renWin = static_cast<vtkOpenGLRenderWindow*>(ren->GetRenderWindow());
 
-  if (this->HaveCellScalars && this->Colors)
+  if (this->HaveCellScalars && this->Colors && in.CellColors.size() >= 4 * in.Texels)
   {
     const int components = this->Colors->GetNumberOfComponents();
     const unsigned char* colors = this->Colors->GetPointer(0);
     const bool single =
       this->FieldDataTupleId > -1 && this->ScalarMode == VTK_SCALAR_MODE_USE_FIELD_DATA;
     const vtkIdType tuples = this->Colors->GetNumberOfTuples();
-    Grow(in.CellColors, 4 * total);
-    for (size_t i = 0; i < total; ++i)
+    for (size_t i = begin; i < end; ++i)
     {
       vtkIdType cell = single ? this->FieldDataTupleId : cellOf(i);
       cell = std::min<vtkIdType>(std::max<vtkIdType>(cell, 0), tuples - 1);
@@ -1579,64 +2310,46 @@ void vtkMultiresolutionPolyDataMapper::UploadCellTextures(vtkRenderer* ren, size
         in.CellColors[4 * i + k] = k < components ? colors[components * cell + k] : 255;
       }
     }
-    if (!this->CellScalarTexture)
-    {
-      this->CellScalarTexture = vtkTextureObject::New();
-      this->CellScalarBuffer = vtkOpenGLBufferObject::New();
-      this->CellScalarBuffer->SetType(vtkOpenGLBufferObject::TextureBuffer);
-    }
-    this->CellScalarTexture->SetContext(renWin);
-    this->CellScalarBuffer->Upload(
-      in.CellColors.data(), 4 * total, vtkOpenGLBufferObject::TextureBuffer);
-    this->CellDataBytesUploaded += static_cast<vtkIdType>(4 * total);
-    this->CellScalarTexture->CreateTextureBuffer(
-      static_cast<unsigned int>(total), 4, VTK_UNSIGNED_CHAR, this->CellScalarBuffer);
+    this->CellScalarBuffer->Bind();
+    glBufferSubData(GL_TEXTURE_BUFFER, static_cast<GLintptr>(4 * begin),
+      static_cast<GLsizeiptr>(4 * (end - begin)), in.CellColors.data() + 4 * begin);
+    this->CellScalarBuffer->Release();
+    this->CellDataBytesUploaded += static_cast<vtkIdType>(4 * (end - begin));
   }
 
-  vtkDataArray* normals = poly->GetCellData()->GetNormals();
-  if (this->HaveCellNormals && normals)
+  vtkDataArray* normals = this->CurrentInput->GetCellData()->GetNormals();
+  if (this->HaveCellNormals && normals && in.CellNormals.size() >= 4 * in.Texels)
   {
-    Grow(in.CellNormals, 4 * total);
     const vtkIdType tuples = normals->GetNumberOfTuples();
     double normal[3];
-    for (size_t i = 0; i < total; ++i)
+    for (size_t i = begin; i < end; ++i)
     {
       const vtkIdType cell = std::min<vtkIdType>(std::max<vtkIdType>(cellOf(i), 0), tuples - 1);
       normals->GetTuple(cell, normal);
-      in.CellNormals[4 * i] = static_cast<float>(normal[0]);
-      in.CellNormals[4 * i + 1] = static_cast<float>(normal[1]);
-      in.CellNormals[4 * i + 2] = static_cast<float>(normal[2]);
+      for (int k = 0; k < 3; ++k)
+      {
+        in.CellNormals[4 * i + k] = static_cast<float>(normal[k]);
+      }
       in.CellNormals[4 * i + 3] = 0.0f;
     }
-    if (!this->CellNormalTexture)
+    this->CellNormalBuffer->Bind();
+    if (in.FloatCellNormals)
     {
-      this->CellNormalTexture = vtkTextureObject::New();
-      this->CellNormalBuffer = vtkOpenGLBufferObject::New();
-      this->CellNormalBuffer->SetType(vtkOpenGLBufferObject::TextureBuffer);
-    }
-    this->CellNormalTexture->SetContext(renWin);
-    if (renWin->GetDefaultTextureInternalFormat(VTK_FLOAT, 4, false, true, false))
-    {
-      this->CellNormalBuffer->Upload(
-        in.CellNormals.data(), 4 * total, vtkOpenGLBufferObject::TextureBuffer);
-      this->CellDataBytesUploaded += static_cast<vtkIdType>(16 * total);
-      this->CellNormalTexture->CreateTextureBuffer(
-        static_cast<unsigned int>(total), 4, VTK_FLOAT, this->CellNormalBuffer);
+      glBufferSubData(GL_TEXTURE_BUFFER, static_cast<GLintptr>(16 * begin),
+        static_cast<GLsizeiptr>(16 * (end - begin)), in.CellNormals.data() + 4 * begin);
+      this->CellDataBytesUploaded += static_cast<vtkIdType>(16 * (end - begin));
     }
     else
     {
-      // No float textures: normals as bytes, as VTK does.
-      Grow(in.CellNormalBytes, 4 * total);
-      for (size_t i = 0; i < 4 * total; ++i)
+      for (size_t i = 4 * begin; i < 4 * end; ++i)
       {
         in.CellNormalBytes[i] = static_cast<unsigned char>(127.0 * (in.CellNormals[i] + 1.0));
       }
-      this->CellNormalBuffer->Upload(
-        in.CellNormalBytes.data(), 4 * total, vtkOpenGLBufferObject::TextureBuffer);
-      this->CellDataBytesUploaded += static_cast<vtkIdType>(4 * total);
-      this->CellNormalTexture->CreateTextureBuffer(
-        static_cast<unsigned int>(total), 4, VTK_UNSIGNED_CHAR, this->CellNormalBuffer);
+      glBufferSubData(GL_TEXTURE_BUFFER, static_cast<GLintptr>(4 * begin),
+        static_cast<GLsizeiptr>(4 * (end - begin)), in.CellNormalBytes.data() + 4 * begin);
+      this->CellDataBytesUploaded += static_cast<vtkIdType>(4 * (end - begin));
     }
+    this->CellNormalBuffer->Release();
   }
 }
 
@@ -1703,6 +2416,12 @@ void vtkMultiresolutionPolyDataMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "HighlightRefinement: " << this->HighlightRefinement
      << " (factor " << this->HighlightFactor << ")\n";
   os << indent << "RefinementTime: " << this->RefinementTime << "\n";
+  os << indent << "IndexSlack: " << this->IndexSlack << "\n";
+  os << indent << "NumberOfRewrittenObjects: " << this->NumberOfRewrittenObjects << "\n";
+  os << indent << "IndexBytesUploaded: " << this->IndexBytesUploaded << "\n";
+  os << indent << "CellDataBytesUploaded: " << this->CellDataBytesUploaded << "\n";
+  os << indent << "NumberOfPaddingPrimitives: " << this->NumberOfPaddingPrimitives << "\n";
+  os << indent << "IndexBufferRelayoutCount: " << in.RelayoutCount << "\n";
   const size_t shown = std::min<size_t>(in.Objects.size(), 20);
   for (size_t i = 0; i < shown; ++i)
   {

@@ -126,11 +126,34 @@ public:
   ///@}
 
   ///@{
-  /// Index updates of the last render: objects rewritten, bytes uploaded, CPU seconds.
+  /**
+   * Index updates of the last render: objects whose index data was rewritten
+   * (all drawn ones when the buffer was laid out again), bytes uploaded to
+   * the index buffers and to the cell-data textures, and the CPU seconds of
+   * the update (extraction, writes and upload calls). All 0 when nothing changed.
+   */
   vtkGetMacro(NumberOfRewrittenObjects, vtkIdType);
+  bool GetObjectRewritten(vtkIdType i) const;
   vtkGetMacro(IndexBytesUploaded, vtkIdType);
   vtkGetMacro(CellDataBytesUploaded, vtkIdType);
   vtkGetMacro(IndexUpdateTime, double);
+  ///@}
+
+  /// Degenerate primitives (slot padding and holes) drawn by the last render.
+  vtkGetMacro(NumberOfPaddingPrimitives, vtkIdType);
+
+  /// Full layouts of the index buffer so far (rebuilds and compactions).
+  vtkIdType GetIndexBufferRelayoutCount() const;
+
+  ///@{
+  /**
+   * Room reserved in each object's index slot, as a fraction of its drawn
+   * primitives (plus 8), so that it can grow without moving; padding is
+   * compacted once it exceeds twice that. Default 0.25. 0: every slot fits
+   * exactly, and any change of an object's size lays the buffer out again.
+   */
+  vtkSetClampMacro(IndexSlack, double, 0.0, 4.0);
+  vtkGetMacro(IndexSlack, double);
   ///@}
 
   ///@{
@@ -284,6 +307,8 @@ protected:
   vtkIdType IndexBytesUploaded = 0;
   vtkIdType CellDataBytesUploaded = 0;
   double IndexUpdateTime = 0.0;
+  vtkIdType NumberOfPaddingPrimitives = 0;
+  double IndexSlack = 0.25;
   bool ColorByResolution = false;
   bool ViewDependentRefinement = true;
   int RefinementMode = BUDGET;
@@ -302,9 +327,12 @@ private:
 
   bool IsValidObject(vtkIdType i) const; ///< with an error when not
   void ReadObjects(vtkDataObject* input);
-  void FillIndexBuffer(vtkRenderer* ren, vtkActor* act);
+  void FillIndexBuffer(vtkRenderer* ren, vtkActor* act, bool rebuild);
+  void PrepareLayout(vtkRenderer* ren, vtkActor* act);
   void RefineObjects(vtkRenderer* ren, vtkActor* act);
-  void UploadCellTextures(vtkRenderer* ren, size_t primitives);
+  void AllocateCellTextures(vtkRenderer* ren);
+  void UploadCellTexels(size_t begin, size_t end);
+  void UpdateResolutionColor(vtkIdType i);
   void UploadResolutionColors();
 
   struct Internals;
