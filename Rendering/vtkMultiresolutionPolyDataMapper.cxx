@@ -1820,15 +1820,15 @@ bool vtkMultiresolutionPolyDataMapper::Internals::Update(
   Object& object, const Content& content, double slack, vtkCellArray* polys)
 {
   const size_t used = this->Stage(object, content);
+  if (!this->CanPad && used != object.SlotSize)
+  {
+    return false; // points: no degenerate point (nor hole), every slot fits exactly
+  }
   if (used == 0)
   {
     this->ClearSlot(object);
     object.Written = content;
     return true;
-  }
-  if (!this->CanPad && used != object.SlotSize)
-  {
-    return false; // points: no degenerate point, every slot fits exactly
   }
   size_t extent = object.SlotUsed;
   if (used > object.SlotSize)
