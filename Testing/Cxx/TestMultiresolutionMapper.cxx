@@ -1141,6 +1141,7 @@ TEST(MultiresolutionMapperSlots, RandomChangesMatchAFullRebuild)
     double Slack;
     double LineWidth;
     bool Vertices;
+    bool Edges = false;
   };
   // Maximum slack: most of the buffer is padding, which must draw nothing in
   // any representation (wide lines go through a geometry shader).
@@ -1149,7 +1150,9 @@ TEST(MultiresolutionMapperSlots, RandomChangesMatchAFullRebuild)
     { "surface_vertices", VTK_SURFACE, false, 0.1, 1.0, true },
     { "wireframe_cells", VTK_WIREFRAME, true, 0.1, 1.0, false },
     { "wide_lines_padded", VTK_WIREFRAME, false, 4.0, 3.0, false },
-    { "points_cells", VTK_POINTS, true, 0.1, 1.0, false }, { "no_slack", VTK_SURFACE, true, 0.0, 1.0, false } };
+    { "surface_edges_padded", VTK_SURFACE, false, 4.0, 1.0, false, true },
+    { "points_cells", VTK_POINTS, true, 0.1, 1.0, false },
+    { "no_slack", VTK_SURFACE, true, 0.0, 1.0, false } };
   for (const Case& c : cases)
   {
     SCOPED_TRACE(c.Name);
@@ -1168,6 +1171,8 @@ TEST(MultiresolutionMapperSlots, RandomChangesMatchAFullRebuild)
     property->SetLineWidth(static_cast<float>(c.LineWidth));
     property->SetPointSize(2);
     property->SetVertexVisibility(c.Vertices);
+    property->SetEdgeVisibility(c.Edges);
+    property->SetEdgeColor(0.1, 0.9, 0.2);
     FullRebuild reference(input, scene.Actor, c.Cells);
     vtkMath::RandomSeed(42);
     for (int frame = 0; frame < 16; ++frame)
