@@ -16,22 +16,37 @@
 
 namespace timecritical
 {
+#if defined(__GNUC__)
+#define TIMECRITICAL_NOINLINE __attribute__((noinline))
+#else
+#define TIMECRITICAL_NOINLINE
+#endif
+
 namespace
 {
 constexpr uint32_t None = std::numeric_limits<uint32_t>::max();
 constexpr double Pi = 3.14159265358979323846;
 }
 
-/// View attributes of event e_v (or of a root), packed for the per-frame sweep.
+/// View attributes of event e_v (or of a root), packed for the per-frame sweep
+/// (40 bytes: what Priority() reads, no angles, so no trigonometry per node).
 struct ViewDependentRefinement::Node
 {
   float Center[3]; // parent's position
   float Radius;
   float Error;
   float Axis[3];
-  float Cos; // cone half-angle cosine, -1: whole sphere
+  float Cos; // cone half-angle theta: cosine (-1: whole sphere) and sine
   float Sin;
-  float Theta; // half-angle, radians
+};
+
+/// A split candidate: the next child of display vertex Owner, with a copy of
+/// its node so that the per-frame sweep reads one sequential array.
+struct ViewDependentRefinement::Candidate
+{
+  Node Data;
+  uint32_t Id;
+  uint32_t Owner;
 };
 
 ViewDependentRefinement::ViewDependentRefinement() = default;
@@ -258,7 +273,6 @@ void ViewDependentRefinement::InitializeImpl(
     const double cosine = std::max(-1.0, std::min(1.0, static_cast<double>(tree.ConeCosine[v])));
     node.Cos = static_cast<float>(cosine);
     node.Sin = static_cast<float>(std::sqrt(std::max(0.0, 1.0 - cosine * cosine)));
-    node.Theta = static_cast<float>(std::acos(cosine));
   }
 
   this->Active.assign(n, 0);
@@ -268,18 +282,16 @@ void ViewDependentRefinement::InitializeImpl(
   this->Display.assign(3 * size_t(nt), 0);
   this->DisplayId.assign(nt, 0);
   this->DisplayPos.assign(nt, None);
-  this->SplitList.assign(n, 0);
+  this->SplitList.assign(n, Candidate{});
   this->SplitListPos.assign(n, None);
   this->MergeList.assign(n, 0);
   this->MergeListPos.assign(n, None);
-  this->KeyCache.assign(n, 0.0f);
-  this->KeyFrame.assign(n, 0);
-  this->Queued.assign(n, 0);
+  this->Keys.assign(n, CachedKey{ 0, 0.0f });
   this->Touched.assign(n, 0);
   this->Frame = 0;
   this->Stack.assign(n, 0);
   this->Work.assign(3 * size_t(n) + 1, 0);
-  this->MergeQueue.assign(n, 0);
+  this->MergeBits.assign(size_t(n) / 64 + 1, 0);
   // Each vertex enters a budget heap once per update, plus re-offers after
   // undone overshoots (bounded below by the capacity check).
   this->SplitHeap.assign(4 * size_t(n) + 64, HeapEntry{});
@@ -359,6 +371,16 @@ void ViewDependentRefinement::PrepareView()
     const double angle = std::min(179.0, std::max(1e-3, v.ViewAngle)) * Pi / 180.0;
     this->PixelsPerUnit = height / (2.0 * std::tan(0.5 * angle));
   }
+  this->PlaneCount = std::max(0, std::min(6, v.NumberOfFrustumPlanes));
+  for (int i = 0; i < 8; ++i)
+  {
+    for (int k = 0; k < 4; ++k)
+    {
+      // Unused: 0 x + 0 y + 0 z + max >= -r, never outside.
+      this->Planes[k][i] = i < this->PlaneCount ? static_cast<float>(v.FrustumPlanes[i][k])
+                                                : (k == 3 ? std::numeric_limits<float>::max() : 0.0f);
+    }
+  }
   // Smallest threshold factor any node can get (SurelyUnwanted()).
   const double silhouette = this->SilhouetteRefinement ? this->SilhouetteFactor : 1.0;
   const double highlight = this->HighlightRefinement ? this->HighlightFactor : 1.0;
@@ -372,15 +394,34 @@ void ViewDependentRefinement::PrepareView()
 //------------------------------------------------------------------------------
 double ViewDependentRefinement::Priority(uint32_t v) const
 {
-  const Node& node = this->Nodes[v];
+  return this->Evaluate(this->Nodes[v]);
+}
+
+// Not inlined: every priority comes from the same machine code (no
+// context-dependent contraction), so a node gets the same key from the sweep's
+// copy as from Nodes.
+TIMECRITICAL_NOINLINE double ViewDependentRefinement::Evaluate(const Node& node) const
+{
   const double cx = node.Center[0], cy = node.Center[1], cz = node.Center[2];
   const double r = node.Radius;
-  for (int i = 0; i < this->View.NumberOfFrustumPlanes && i < 6; ++i)
+  if (this->PlaneCount > 0)
   {
-    const double* p = this->View.FrustumPlanes[i];
-    if (p[0] * cx + p[1] * cy + p[2] * cz + p[3] < -r)
+    // Wholly outside a plane (float: a node grazing a plane may go either way).
+    // Written as two plain loops so that compilers vectorize them.
+    float distance[8];
+    for (int i = 0; i < 8; ++i)
     {
-      return -1.0; // wholly outside
+      distance[i] = this->Planes[0][i] * node.Center[0] + this->Planes[1][i] * node.Center[1] +
+        this->Planes[2][i] * node.Center[2] + this->Planes[3][i] + node.Radius;
+    }
+    int outside = 0;
+    for (int i = 0; i < 8; ++i)
+    {
+      outside |= distance[i] < 0.0f;
+    }
+    if (outside != 0)
+    {
+      return -1.0;
     }
   }
   double dx, dy, dz, sinB = 0.0, cosB = 1.0, projected;
@@ -417,19 +458,22 @@ double ViewDependentRefinement::Priority(uint32_t v) const
         (this->HighlightRefinement ? this->HighlightFactor : 1.0);
       return f > 0.0 ? projected / f : std::numeric_limits<double>::infinity();
     }
-    dx /= dist;
-    dy /= dist;
-    dz /= dist;
-    sinB = r / dist;
+    const double inverse = 1.0 / dist;
+    dx *= inverse;
+    dy *= inverse;
+    dz *= inverse;
+    sinB = r * inverse;
     cosB = std::sqrt(1.0 - sinB * sinB);
   }
   double factor = 1.0;
-  // Angles to the view directions of the sphere: theta (cone) + beta (sphere).
+  // Angles to the view directions of the sphere: theta (cone) + beta (sphere),
+  // by their cosines and sines (sum formulas instead of acos/asin/cos).
+  const double c = node.Cos, s = node.Sin;
   const double cosA = node.Axis[0] * dx + node.Axis[1] * dy + node.Axis[2] * dz;
-  const double cosTB = node.Cos * cosB - node.Sin * sinB;
-  const double sinTB = node.Sin * cosB + node.Cos * sinB;
+  const double cosTB = c * cosB - s * sinB;
+  const double sinTB = s * cosB + c * sinB;
   bool silhouette = true;
-  if (cosTB > 0.0 && node.Cos > -1.0f) // theta + beta below 90 degrees
+  if (cosTB > 0.0 && c > -1.0) // theta + beta below 90 degrees
   {
     if (this->BackFaceSimplification && cosA > sinTB)
     {
@@ -444,18 +488,23 @@ double ViewDependentRefinement::Priority(uint32_t v) const
   if (this->HighlightRefinement)
   {
     // Reflection vectors of the light over the cone lie within 2 theta of the
-    // axis's reflection; the highlight is seen when that cone holds the
-    // direction to the eye (-d) widened by beta.
-    const double angle = 2.0 * node.Theta + std::asin(std::min(1.0, sinB));
-    bool highlight = angle >= Pi || node.Cos <= -1.0f;
+    // axis's reflection R = 2 (a.L) a - L; the highlight is seen when that
+    // cone, widened by beta, holds the direction to the eye (-d). theta >= 90
+    // degrees (c <= 0) or 2 theta + beta >= 180: every direction.
+    bool highlight = c <= 0.0;
     if (!highlight)
     {
-      const double aL = node.Axis[0] * this->LightX + node.Axis[1] * this->LightY +
-        node.Axis[2] * this->LightZ;
-      const double rx = 2.0 * aL * node.Axis[0] - this->LightX;
-      const double ry = 2.0 * aL * node.Axis[1] - this->LightY;
-      const double rz = 2.0 * aL * node.Axis[2] - this->LightZ;
-      highlight = -(rx * dx + ry * dy + rz * dz) >= std::cos(angle);
+      const double c2 = 2.0 * c * c - 1.0, s2 = 2.0 * s * c; // 2 theta < 180 degrees
+      const double cosAngle = c2 * cosB - s2 * sinB;
+      const double sinAngle = s2 * cosB + c2 * sinB;
+      highlight = sinAngle <= 0.0 && cosAngle < 0.0;
+      if (!highlight)
+      {
+        const double aL = node.Axis[0] * this->LightX + node.Axis[1] * this->LightY +
+          node.Axis[2] * this->LightZ;
+        const double dL = this->LightX * dx + this->LightY * dy + this->LightZ * dz;
+        highlight = dL - 2.0 * aL * cosA >= cosAngle; // -R.d >= cos(2 theta + beta)
+      }
     }
     if (highlight)
     {
@@ -466,7 +515,7 @@ double ViewDependentRefinement::Priority(uint32_t v) const
 }
 
 
-bool ViewDependentRefinement::SurelyUnwanted(uint32_t v) const
+bool ViewDependentRefinement::SurelyUnwanted(const Node& node) const
 {
   // Wanted(v) is false when even the smallest threshold factor leaves the
   // projected error below the threshold, whatever the culling: Priority() is
@@ -478,7 +527,7 @@ bool ViewDependentRefinement::SurelyUnwanted(uint32_t v) const
   {
     return false;
   }
-  const Node& node = this->Nodes[v];
+  
   const double error = node.Error;
   if (!(error > 0.0))
   {
@@ -513,8 +562,7 @@ void ViewDependentRefinement::NextFrame()
 {
   if (++this->Frame == 0) // stamps wrapped: clear them once every 2^32 updates
   {
-    std::fill(this->KeyFrame.begin(), this->KeyFrame.end(), 0u);
-    std::fill(this->Queued.begin(), this->Queued.end(), 0u);
+    std::fill(this->Keys.begin(), this->Keys.end(), CachedKey{ 0, 0.0f });
     std::fill(this->Touched.begin(), this->Touched.end(), 0u);
     this->Frame = 1;
     this->TouchFrame = 0;
@@ -523,18 +571,22 @@ void ViewDependentRefinement::NextFrame()
 
 float ViewDependentRefinement::Key(uint32_t v)
 {
-  if (this->KeyFrame[v] != this->Frame)
+  CachedKey& k = this->Keys[v];
+  if (k.Frame != this->Frame)
   {
-    this->KeyFrame[v] = this->Frame;
-    this->KeyCache[v] = static_cast<float>(this->Priority(v));
+    k.Frame = this->Frame;
+    k.Key = static_cast<float>(this->Priority(v));
   }
-  return this->KeyCache[v];
+  return k.Key;
 }
 
 bool ViewDependentRefinement::Wanted(uint32_t v)
 {
-  const float p = this->Key(v);
-  return p >= 0.0f && (p > this->PixelThreshold || this->PixelThreshold <= 0.0);
+  if (this->Keys[v].Frame != this->Frame && this->SurelyUnwanted(this->Nodes[v]))
+  {
+    return false; // cheaper than Key() (not cached: asked about again rarely)
+  }
+  return this->IsWanted(this->Key(v));
 }
 
 //------------------------------------------------------------------------------
@@ -658,26 +710,6 @@ bool ViewDependentRefinement::CanMerge(uint32_t v) const
     this->LastActiveChild(this->Parent[v]) == v;
 }
 
-template <typename F>
-void ViewDependentRefinement::ForEachReleased(uint32_t v, uint32_t u, F f) const
-{
-  // u's new last child (or u), the vertices v's row held, and the events
-  // whose row holds u that v (a child of u above them) needed.
-  const uint32_t last = this->LastActiveChild(u);
-  f(last != None ? last : u);
-  for (uint32_t i = this->ReqOffsets[v]; i < this->ReqOffsets[size_t(v) + 1]; ++i)
-  {
-    f(this->Req[i]);
-  }
-  const uint32_t* begin = this->Rev.data() + this->RevOffsets[u];
-  const uint32_t* end = this->Rev.data() + this->RevOffsets[size_t(u) + 1];
-  const uint32_t low = last != None ? last : 0;
-  for (const uint32_t* r = std::upper_bound(begin, end, low); r != end && *r < v; ++r)
-  {
-    f(*r);
-  }
-}
-
 //------------------------------------------------------------------------------
 void ViewDependentRefinement::AddDisplay(uint32_t t)
 {
@@ -724,15 +756,56 @@ inline void SetMember(uint32_t* list, uint32_t* pos, uint32_t& size, uint32_t x,
 
 void ViewDependentRefinement::RefreshSplitCandidate(uint32_t w)
 {
-  SetMember(this->SplitList.data(), this->SplitListPos.data(), this->SplitListSize, w,
-    this->Active[w] && this->NextChild(w) != None);
+  const uint32_t c = this->Active[w] ? this->NextChild(w) : None;
+  uint32_t p = this->SplitListPos[w];
+  if (c != None)
+  {
+    if (p == None)
+    {
+      p = this->SplitListSize++;
+      this->SplitListPos[w] = p;
+    }
+    else if (this->SplitList[p].Id == c)
+    {
+      return;
+    }
+    this->SplitList[p] = Candidate{ this->Nodes[c], c, w };
+  }
+  else if (p != None)
+  {
+    const uint32_t last = --this->SplitListSize;
+    if (p != last)
+    {
+      this->SplitList[p] = this->SplitList[last];
+      this->SplitListPos[this->SplitList[p].Owner] = p;
+    }
+    this->SplitListPos[w] = None;
+  }
 }
 
 void ViewDependentRefinement::RefreshMergeCandidate(uint32_t x)
 {
-  SetMember(this->MergeList.data(), this->MergeListPos.data(), this->MergeListSize, x,
-    x >= this->B && this->Active[x] && this->ActiveChildren[x] == 0 &&
-      this->LastActiveChild(this->Parent[x]) == x);
+  const bool member = this->CanMerge(x);
+  if (member == (this->MergeListPos[x] != None))
+  {
+    return;
+  }
+  SetMember(this->MergeList.data(), this->MergeListPos.data(), this->MergeListSize, x, member);
+  // A vertex that becomes mergeable goes to the running update's queue
+  // (only merges make vertices mergeable, always coarser ones than the merged).
+  if (member && this->Merging)
+  {
+    this->MergeBits[x >> 6] |= uint64_t(1) << (x & 63);
+  }
+  else if (member && this->Mode == UpdateMode::Budget)
+  {
+    this->OfferMerge(x);
+  }
+}
+
+void ViewDependentRefinement::LeaveMergeCandidates(uint32_t x)
+{
+  SetMember(this->MergeList.data(), this->MergeListPos.data(), this->MergeListSize, x, false);
 }
 
 void ViewDependentRefinement::Split(uint32_t v)
@@ -743,9 +816,15 @@ void ViewDependentRefinement::Split(uint32_t v)
   ++this->ActiveChildren[u];
   ++this->ActiveVertexCount;
   ++this->Statistics.Splits;
+  // Counts leaving 0 take their vertex off the merge candidates (and back on
+  // when they return to 0, in Merge()).
   for (uint32_t i = this->ReqOffsets[v]; i < this->ReqOffsets[size_t(v) + 1]; ++i)
   {
-    ++this->RequiredBy[this->Req[i]];
+    const uint32_t x = this->Req[i];
+    if (this->RequiredBy[x]++ == 0)
+    {
+      this->LeaveMergeCandidates(x);
+    }
   }
   // u's last displayed child moves from `previous` to v: events between them
   // whose row holds u now have a row vertex with a displayed child above them.
@@ -755,7 +834,10 @@ void ViewDependentRefinement::Split(uint32_t v)
     for (const uint32_t* r = std::upper_bound(begin, end, previous != None ? previous : 0);
          r != end && *r < v; ++r)
     {
-      ++this->Blockers[*r];
+      if (this->Blockers[*r]++ == 0)
+      {
+        this->LeaveMergeCandidates(*r);
+      }
     }
   }
   for (uint32_t t = this->BlockOffsets[v]; t < this->BlockOffsets[size_t(v) + 1]; ++t)
@@ -803,7 +885,11 @@ void ViewDependentRefinement::Merge(uint32_t v)
   ++this->Statistics.Merges;
   for (uint32_t i = this->ReqOffsets[v]; i < this->ReqOffsets[size_t(v) + 1]; ++i)
   {
-    --this->RequiredBy[this->Req[i]];
+    const uint32_t x = this->Req[i];
+    if (--this->RequiredBy[x] == 0)
+    {
+      this->RefreshMergeCandidate(x);
+    }
   }
   {
     // The reverse of Split(): u's last displayed child moves back from v.
@@ -813,7 +899,10 @@ void ViewDependentRefinement::Merge(uint32_t v)
     for (const uint32_t* r = std::upper_bound(begin, end, last != None ? last : 0);
          r != end && *r < v; ++r)
     {
-      --this->Blockers[*r];
+      if (--this->Blockers[*r] == 0)
+      {
+        this->RefreshMergeCandidate(*r);
+      }
     }
   }
   for (uint32_t t = this->BlockOffsets[v]; t < this->BlockOffsets[size_t(v) + 1]; ++t)
@@ -842,7 +931,6 @@ void ViewDependentRefinement::Merge(uint32_t v)
   {
     this->Touched[v] = this->TouchFrame;
     this->OfferSplit(v);
-    this->ForEachReleased(v, u, [this](uint32_t x) { this->OfferMerge(x); });
   }
 }
 
@@ -873,38 +961,47 @@ void ViewDependentRefinement::MergeUnwanted()
   // Only what is mergeable now is queued (CanMerge() first: it is O(1) and
   // spares most priorities): whatever becomes mergeable later is released by
   // a merge here and pushed then.
-  uint32_t* queue = this->MergeQueue.data();
-  this->MergeQueueSize = 0;
+  uint64_t* bits = this->MergeBits.data();
+  size_t top = 0; // highest word that may hold a bit
+  bool any = false;
   for (uint32_t i = 0; i < this->MergeListSize; ++i)
   {
-    const uint32_t x = this->MergeList[i];
-    if (this->CanMerge(x) && !this->Wanted(x))
+    const uint32_t x = this->MergeList[i]; // CanMerge(x)
+    if (!this->Wanted(x))
     {
-      this->Queued[x] = this->Frame;
-      queue[this->MergeQueueSize++] = x;
+      bits[x >> 6] |= uint64_t(1) << (x & 63);
+      top = std::max<size_t>(top, x >> 6);
+      any = true;
     }
   }
-  std::make_heap(queue, queue + this->MergeQueueSize);
-  auto push = [this, queue](uint32_t x) {
-    if (x >= this->B && this->Active[x] && this->Queued[x] != this->Frame)
-    {
-      this->Queued[x] = this->Frame;
-      queue[this->MergeQueueSize++] = x;
-      std::push_heap(queue, queue + this->MergeQueueSize);
-    }
-  };
-  while (this->MergeQueueSize > 0 && !(this->Mode == UpdateMode::None && this->Bounded &&
-                                        this->OutOfTime()))
+  // Merges queue the vertices they make mergeable (RefreshMergeCandidate()).
+  this->Merging = true;
+  for (size_t word = top; any;)
   {
-    std::pop_heap(queue, queue + this->MergeQueueSize);
-    const uint32_t x = queue[--this->MergeQueueSize];
-    if (!this->CanMerge(x) || this->Wanted(x))
+    if (bits[word] == 0)
+    {
+      if (word == 0)
+      {
+        break;
+      }
+      --word;
+      continue;
+    }
+    if (this->Mode == UpdateMode::None && this->Bounded && this->OutOfTime())
+    {
+      std::fill(bits, bits + word + 1, uint64_t(0)); // nothing stays queued
+      break;
+    }
+    const int bit = 63 - __builtin_clzll(bits[word]);
+    bits[word] &= ~(uint64_t(1) << bit);
+    const uint32_t x = uint32_t(word * 64 + size_t(bit));
+    if (this->MergeListPos[x] == None || this->Wanted(x)) // !CanMerge(x) || ...
     {
       continue;
     }
     this->Merge(x);
-    this->ForEachReleased(x, this->Parent[x], push);
   }
+  this->Merging = false;
 }
 
 const RefinementStatistics& ViewDependentRefinement::UpdateFixedAccuracy()
@@ -921,12 +1018,20 @@ const RefinementStatistics& ViewDependentRefinement::UpdateFixedAccuracy()
   // The candidates (next child of each display vertex) are decided here, in
   // list order; only the wanted ones are kept (the view alone decides, so
   // this is what the lazy check at the pop would find).
+  // Straight from the list's node copies (a sequential read; what Wanted()
+  // would find), caching only the wanted keys, asked for again at the pop.
   for (uint32_t i = 0; i < this->SplitListSize; ++i)
   {
-    const uint32_t c = this->NextChild(this->SplitList[i]);
-    if (c != None && !this->SurelyUnwanted(c) && this->Wanted(c))
+    const Candidate& e = this->SplitList[i];
+    if (this->SurelyUnwanted(e.Data))
     {
-      this->Work[this->WorkSize++] = c;
+      continue;
+    }
+    const float key = static_cast<float>(this->Evaluate(e.Data));
+    if (this->IsWanted(key))
+    {
+      this->Keys[e.Id] = CachedKey{ this->Frame, key };
+      this->Work[this->WorkSize++] = e.Id;
     }
   }
   while (this->WorkSize > 0)
@@ -1044,21 +1149,24 @@ const RefinementStatistics& ViewDependentRefinement::UpdateBudget(
   this->SplitSize = 0;
   for (uint32_t i = 0; i < this->SplitListSize; ++i)
   {
-    const uint32_t c = this->NextChild(this->SplitList[i]);
-    if (this->Wanted(c))
+    const Candidate& e = this->SplitList[i];
+    if (this->SurelyUnwanted(e.Data))
     {
-      split[this->SplitSize++] = HeapEntry{ this->Key(c), c };
+      continue;
+    }
+    const float key = static_cast<float>(this->Evaluate(e.Data));
+    if (this->IsWanted(key))
+    {
+      this->Keys[e.Id] = CachedKey{ this->Frame, key };
+      split[this->SplitSize++] = HeapEntry{ key, e.Id };
     }
   }
   std::make_heap(split, split + this->SplitSize, SplitOrder());
   this->MergeSize = 0;
   for (uint32_t i = 0; i < this->MergeListSize; ++i)
   {
-    const uint32_t x = this->MergeList[i];
-    if (this->CanMerge(x))
-    {
-      merge[this->MergeSize++] = HeapEntry{ this->Key(x), x };
-    }
+    const uint32_t x = this->MergeList[i]; // CanMerge(x)
+    merge[this->MergeSize++] = HeapEntry{ this->Key(x), x };
   }
   std::make_heap(merge, merge + this->MergeSize, MergeOrder());
 
@@ -1094,19 +1202,20 @@ const RefinementStatistics& ViewDependentRefinement::UpdateBudget(
   // (otherwise the whole split heap is popped every frame).
   constexpr uint32_t MisfitLimit = 32;
   uint32_t misfits = 0;
-  // Replays the merges of a failed trade backwards (legal: it restores the
-  // front before them) and offers them as merge candidates again.
-  auto undoTrade = [&]() {
-    const uint32_t count = this->TradeLogSize;
+  // Replays the merges of a failed trade made since TradeLog[from] backwards
+  // (legal: it restores the front before them) and offers them as merge
+  // candidates again.
+  auto undoMerges = [&](uint32_t from) {
+    const uint32_t count = this->TradeLogSize - from;
     this->Mode = UpdateMode::None;
-    while (this->TradeLogSize > 0)
+    while (this->TradeLogSize > from)
     {
       const uint32_t x = this->TradeLog[--this->TradeLogSize];
       this->Split(x);
       this->Touched[x] = 0;
     }
     this->Mode = UpdateMode::Budget;
-    for (uint32_t i = 0; i < count; ++i)
+    for (uint32_t i = from; i < from + count; ++i)
     {
       this->OfferMerge(this->TradeLog[i]);
     }
@@ -1114,6 +1223,7 @@ const RefinementStatistics& ViewDependentRefinement::UpdateBudget(
     this->Statistics.Merges -= count;
     this->UndoneOperations += 2 * count;
   };
+  auto undoTrade = [&]() { undoMerges(0); };
   this->TradeLogSize = 0;
   for (;;)
   {
@@ -1150,15 +1260,30 @@ const RefinementStatistics& ViewDependentRefinement::UpdateBudget(
       std::pop_heap(split, split + this->SplitSize, SplitOrder());
       --this->SplitSize;
       this->SplitLogSize = 0;
+      const uint32_t paid = this->TradeLogSize; // merges made for s before its splits
       this->ForceSplit(s);
+      // The forced splits may overshoot: they are part of the price of s,
+      // paid like its own triangles with merges less useful than s.
+      while (this->DisplayCount > triangleBudget)
+      {
+        const HeapEntry* m = topMerge();
+        if (m == nullptr || !(m->Key < top.Key))
+        {
+          break;
+        }
+        const uint32_t merged = popMerge();
+        this->Merge(merged);
+        this->TradeLog[this->TradeLogSize++] = merged;
+      }
       if (this->DisplayCount <= triangleBudget)
       {
         this->TradeLogSize = 0; // the trade is made
       }
       else
       {
-        // The forced splits overshoot: replay them backwards (always legal,
-        // it restores the previous front) and leave s out for this update.
+        // Too dear: replay everything backwards (always legal, it restores
+        // the previous front; newest first) and leave s out for this update.
+        undoMerges(paid);
         this->Mode = UpdateMode::None;
         const uint32_t forced = this->SplitLogSize;
         while (this->SplitLogSize > 0)

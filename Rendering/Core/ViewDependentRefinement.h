@@ -197,11 +197,17 @@ public:
   uint32_t GetNumberOfBaseVertices() const { return this->B; }
 
 private:
-  struct Node; // per-event view attributes (packed)
+  struct Node;      // per-event view attributes (packed)
+  struct Candidate; // a split candidate and its node
   struct HeapEntry
   {
     float Key;
     uint32_t Id;
+  };
+  struct CachedKey // Priority() of frame Frame (one cache line for both)
+  {
+    uint32_t Frame;
+    float Key;
   };
 
   template <typename T>
@@ -211,11 +217,18 @@ private:
   void NextFrame();
   /// Projected error of event v over its local threshold factor; negative when culled.
   double Priority(uint32_t v) const;
+  double Evaluate(const Node& node) const; // Priority() of a node
+
   /// Priority(v), computed once per update.
   float Key(uint32_t v);
   bool Wanted(uint32_t v);
+  /// Whether a node with this key is split (or kept) at the pixel threshold.
+  bool IsWanted(float key) const
+  {
+    return key >= 0.0f && (key > this->PixelThreshold || this->PixelThreshold <= 0.0);
+  }
   /// Conservative, cheap: true only when Wanted(v) is false (whatever the culling).
-  bool SurelyUnwanted(uint32_t v) const;
+  bool SurelyUnwanted(const Node& node) const;
   void Split(uint32_t v);
   void Merge(uint32_t v);
   /// Splits v and, first, every split it needs. Returns false when blocked.
@@ -231,9 +244,7 @@ private:
   // Candidate lists, kept up to date by Split() and Merge().
   void RefreshSplitCandidate(uint32_t w);
   void RefreshMergeCandidate(uint32_t x);
-  /// Calls f on every vertex that the merge of v (child of u) may have made mergeable.
-  template <typename F>
-  void ForEachReleased(uint32_t v, uint32_t u, F f) const;
+  void LeaveMergeCandidates(uint32_t x); // x no longer CanMerge()
   /// Merges every unwanted vertex that nothing displayed needs, finest first
   /// (stops early when a bounded budget update runs out of time).
   void MergeUnwanted();
@@ -278,14 +289,14 @@ private:
   uint32_t DisplayCount = 0;
   uint32_t ActiveVertexCount = 0;
 
-  // Display vertices with a child left to split, and display vertices that are
-  // leaves and their parent's last displayed child (positions: UINT32_MAX absent).
-  std::vector<uint32_t> SplitList, SplitListPos, MergeList, MergeListPos;
+  // Split candidates: the next child of each display vertex that has one
+  // (positions by owner); merge candidates: exactly the vertices CanMerge()
+  // (positions: UINT32_MAX absent).
+  std::vector<Candidate> SplitList;
+  std::vector<uint32_t> SplitListPos, MergeList, MergeListPos;
   uint32_t SplitListSize = 0, MergeListSize = 0;
 
-  std::vector<float> KeyCache;      // Priority() of this frame
-  std::vector<uint32_t> KeyFrame;   // frame stamp of KeyCache
-  std::vector<uint32_t> Queued;     // frame stamp: in the merge queue
+  std::vector<CachedKey> Keys;
   std::vector<uint32_t> Touched;    // TouchFrame stamp: split, merged or left out by this budget update
   uint32_t TouchFrame = 0;          // Frame of the budget update that an interrupted one continues
   bool ContinueUpdate = false;      // the last budget update was interrupted
@@ -294,8 +305,10 @@ private:
   std::vector<uint32_t> Stack; // forced splits
   std::vector<uint32_t> Work;  // fixed-accuracy split candidates
   uint32_t WorkSize = 0;
-  std::vector<uint32_t> MergeQueue; // max-heap of ids (finest first)
-  uint32_t MergeQueueSize = 0;
+  // MergeUnwanted()'s queue, finest first: a bit per vertex, popped by a
+  // downward scan (every push is below the last pop, so one sweep suffices).
+  std::vector<uint64_t> MergeBits;
+  bool Merging = false; // MergeUnwanted() runs: new merge candidates go to MergeBits
   // Budget heaps (lazy: entries are checked when they reach the top).
   std::vector<HeapEntry> SplitHeap, MergeHeap;
   uint32_t SplitSize = 0, MergeSize = 0;
@@ -327,6 +340,10 @@ private:
   double PixelsPerUnit = 1.0; // parallel: per world unit; perspective: times distance
   double MinimumFactor = 1.0; // smallest threshold factor (silhouette, highlight)
   double UnwantedScale = 0.0; // PixelsPerUnit / (MinimumFactor * tau * (1 - 1e-6)); 0: none
+  // Frustum planes as x, y, z, w rows of 8 (unused ones never cull): one
+  // branch-free, vectorizable test per node.
+  int PlaneCount = 0;
+  alignas(32) float Planes[4][8] = {};
 
   RefinementStatistics Statistics;
 };

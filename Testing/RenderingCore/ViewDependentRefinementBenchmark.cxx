@@ -1,20 +1,23 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // ViewDependentRefinementBenchmark [mesh] [--json FILE] [--loop N] [--w2-only]
-// [--w2-fixed] [--limit SECONDS]: on an orbit around the mesh (igea by default): the
-// display triangle fraction at tau = 1 px, 512 x 512, the share of forced
-// splits (fronts from scratch), what back-face simplification and a
-// half-space frustum save, the incremental fixed-accuracy and budget update
-// times near 100K display triangles (median, mean, worst), and
-// ComputeMergeTree's time per million triangles.
+// [--w2-fixed] [--limit SECONDS] [--plain] (--help: usage): on an orbit around
+// the mesh (igea by default): the display triangle fraction at tau = 1 px,
+// 512 x 512, the share of forced splits (fronts from scratch), what back-face
+// simplification and a half-space frustum save, the incremental
+// fixed-accuracy and budget update times near 100K display triangles (median,
+// mean, worst), and ComputeMergeTree's time per million triangles.
 //
 // W2-like scenario (after the above, or alone with --w2-only; --loop 1 gives
-// W2's 1.07M-triangle igea): 512 px, tau floor 0, a camera path of 3-5
-// degrees and up to 10% zoom per frame, budgets moving by 5-20% per frame
-// within 50-120K triangles; budget update times unbounded and with a work
-// bound of --limit seconds (default 5 ms). Under callgrind
-// (--instr-atstart=no) only the unbounded W2-like budget updates are
-// instrumented, or with --w2-fixed (implies --w2-only) the fixed-accuracy
-// updates at tau = 1 px on the same camera path (also timed with --w2-only).
+// W2's 1.07M-triangle igea): the renderer's settings (back faces simplified,
+// silhouette refinement 0.25, highlight refinement 0.5, W2's fixed light,
+// the camera's six frustum planes and near distance; --plain: silhouette and
+// highlight off, headlight, no frustum) at 512 px, a camera path of 3-5 degrees and up to 10% zoom per
+// frame; fixed-accuracy updates at tau = 1 px, then budget updates at tau
+// floor 0 with budgets moving by 5-20% per frame within 50-120K triangles,
+// unbounded and with a work bound of --limit seconds (default 5 ms). Under
+// callgrind (--instr-atstart=no) only the unbounded W2-like budget updates
+// are instrumented, or with --w2-fixed (implies --w2-only) the
+// fixed-accuracy updates.
 #include "MergeTreeAttributes.h"
 #include "TOMBuilder.h"
 #include "TestMeshIO.h"
@@ -26,6 +29,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <exception>
 #include <map>
 #include <numeric>
 #include <string>
@@ -144,30 +148,82 @@ testing::TriangleMesh LoopSubdivide(const testing::TriangleMesh& in)
   }
   return out;
 }
+
+void PrintUsage(FILE* out, const char* program)
+{
+  std::fprintf(out,
+    "usage: %s [MESH] [--json FILE] [--loop N] [--w2-only] [--w2-fixed] [--limit SECONDS] "
+    "[--plain]\n"
+    "  MESH             OBJ or PLY surface (default: igea.ply of the shared data)\n"
+    "  --json FILE      write the figures as JSON\n"
+    "  --loop N         Loop-subdivide the mesh N times first (1: W2's igea)\n"
+    "  --w2-only        only the W2-like scenario (renderer settings, camera path)\n"
+    "  --w2-fixed       --w2-only; callgrind instruments the fixed-accuracy updates\n"
+    "  --limit SECONDS  work bound of the bounded W2-like budget updates (default 0.005; 0: "
+    "none)\n"
+    "  --plain          W2-like without silhouette and highlight refinement or frustum\n"
+    "  --help           this message\n",
+    program);
+}
+
+/// Parses a whole argument as a number (false when it is not one).
+bool ParseNumber(const char* text, double& value)
+{
+  char* end = nullptr;
+  value = std::strtod(text, &end);
+  return end != text && *end == '\0' && std::isfinite(value);
+}
+
+int Run(int argc, char** argv);
 }
 
 int main(int argc, char** argv)
+{
+  try
+  {
+    return Run(argc, argv);
+  }
+  catch (const std::exception& e)
+  {
+    std::fprintf(stderr, "%s: %s\n", argv[0], e.what());
+    return 1;
+  }
+}
+
+namespace
+{
+int Run(int argc, char** argv)
 {
   std::string path = testing::SharedDataDirectory() + "/igea.ply";
   std::string json;
   int loops = 0;
   bool w2Only = false;
   bool w2Fixed = false;
+  bool plain = false;
   double limit = 0.005;
   for (int i = 1; i < argc; ++i)
   {
     const std::string a = argv[i];
-    if (a == "--json" && i + 1 < argc)
+    double number = 0.0;
+    if (a == "--help" || a == "-h")
+    {
+      PrintUsage(stdout, argv[0]);
+      return 0;
+    }
+    else if (a == "--json" && i + 1 < argc)
     {
       json = argv[++i];
     }
-    else if (a == "--loop" && i + 1 < argc)
+    else if (a == "--loop" && i + 1 < argc && ParseNumber(argv[i + 1], number) && number >= 0 &&
+      number <= 4 && number == std::floor(number))
     {
-      loops = std::atoi(argv[++i]);
+      loops = int(number);
+      ++i;
     }
-    else if (a == "--limit" && i + 1 < argc)
+    else if (a == "--limit" && i + 1 < argc && ParseNumber(argv[i + 1], number) && number >= 0)
     {
-      limit = std::atof(argv[++i]);
+      limit = number;
+      ++i;
     }
     else if (a == "--w2-only")
     {
@@ -177,6 +233,16 @@ int main(int argc, char** argv)
     {
       w2Only = true;
       w2Fixed = true;
+    }
+    else if (a == "--plain")
+    {
+      plain = true;
+    }
+    else if (a.empty() || a[0] == '-')
+    {
+      std::fprintf(stderr, "%s: bad or incomplete argument '%s'\n", argv[0], a.c_str());
+      PrintUsage(stderr, argv[0]);
+      return 2;
     }
     else
     {
@@ -239,6 +305,85 @@ int main(int argc, char** argv)
     return x.empty() ? 0.0 : x[x.size() / 2];
   };
 
+  // W2-like views: what vtkMultiresolutionPolyDataMapper passes for W2's
+  // camera (512 x 512, so both half-angles are 15 degrees): the six frustum
+  // planes and the near distance of a clipping range reset to the bounds.
+  auto w2View = [&](double angle, double zoom) {
+    RefinementView view = orbit(angle, zoom, 512);
+    if (plain)
+    {
+      return view;
+    }
+    // W2's light outside its close-up: 70 degrees left of +z, 35 up (a fixed
+    // light instead of the orbit's headlight, which would put a highlight at
+    // the centre of every view).
+    const double la = -70 * pi / 180, le = 35 * pi / 180;
+    view.LightDirection[0] = std::sin(la) * std::cos(le);
+    view.LightDirection[1] = std::sin(le);
+    view.LightDirection[2] = std::cos(la) * std::cos(le);
+    double d[3], right[3], up[3];
+    const double* dir = view.Direction;
+    const double dl = std::sqrt(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
+    for (int k = 0; k < 3; ++k)
+    {
+      d[k] = dir[k] / dl;
+    }
+    // right = d x (0, 1, 0), up = right x d
+    right[0] = -d[2];
+    right[1] = 0.0;
+    right[2] = d[0];
+    const double rl = std::sqrt(right[0] * right[0] + right[2] * right[2]);
+    right[0] /= rl;
+    right[2] /= rl;
+    up[0] = right[1] * d[2] - right[2] * d[1];
+    up[1] = right[2] * d[0] - right[0] * d[2];
+    up[2] = right[0] * d[1] - right[1] * d[0];
+    double nearest = 1e300, farthest = -1e300;
+    for (int c = 0; c < 8; ++c)
+    {
+      double depth = 0.0;
+      for (int k = 0; k < 3; ++k)
+      {
+        depth += d[k] * (((c >> k) & 1 ? hi[k] : lo[k]) - view.Eye[k]);
+      }
+      nearest = std::min(nearest, depth);
+      farthest = std::max(farthest, depth);
+    }
+    farthest *= 1.01;
+    nearest = std::max(0.99 * nearest, 1e-3 * farthest);
+    view.NearDistance = nearest;
+    const double ch = std::cos(15 * pi / 180), sh = std::sin(15 * pi / 180);
+    const double sides[4][3] = { { ch * right[0], ch * right[1], ch * right[2] },
+      { -ch * right[0], -ch * right[1], -ch * right[2] }, { ch * up[0], ch * up[1], ch * up[2] },
+      { -ch * up[0], -ch * up[1], -ch * up[2] } };
+    view.NumberOfFrustumPlanes = 6;
+    for (int i = 0; i < 6; ++i)
+    {
+      double n[3];
+      for (int k = 0; k < 3; ++k)
+      {
+        n[k] = i < 4 ? sides[i][k] + sh * d[k] : (i == 4 ? d[k] : -d[k]);
+      }
+      const double offset = i < 4 ? 0.0 : (i == 4 ? -nearest : farthest);
+      for (int k = 0; k < 3; ++k)
+      {
+        view.FrustumPlanes[i][k] = n[k];
+      }
+      view.FrustumPlanes[i][3] = offset - (n[0] * view.Eye[0] + n[1] * view.Eye[1] + n[2] * view.Eye[2]);
+    }
+    return view;
+  };
+  // The renderer's and the mapper's defaults (W2 sets them explicitly).
+  auto w2Settings = [&](double tau) {
+    vdr.SetPixelThreshold(tau);
+    vdr.SetBackFaceSimplification(true);
+    vdr.SetSilhouetteRefinement(!plain);
+    vdr.SetSilhouetteFactor(0.25);
+    vdr.SetHighlightRefinement(!plain);
+    vdr.SetHighlightFactor(0.5);
+  };
+  const char* w2Label = plain ? "plain" : "silhouette 0.25, highlight 0.5, frustum";
+
   // W2-like scenario: large view changes and budgets moving by thousands of
   // triangles each frame (see the file comment). Deterministic path.
   struct W2Figures
@@ -255,10 +400,9 @@ int main(int argc, char** argv)
     const double lowBudget = std::min(50000.0, 0.05 * full);
     const double highBudget = std::min(120000.0, 0.12 * full);
     double angle = 0, zoom = 1.0, budget = 0.5 * (lowBudget + highBudget);
-    vdr.SetPixelThreshold(0.0);
-    vdr.SetBackFaceSimplification(true);
+    w2Settings(0.0);
     vdr.Reset();
-    vdr.SetView(orbit(angle, zoom, 512));
+    vdr.SetView(w2View(angle, zoom));
     vdr.UpdateBudget(uint32_t(budget)); // warm-up: the first front
     std::vector<double> times;
     W2Figures f;
@@ -269,7 +413,7 @@ int main(int argc, char** argv)
       const double change = 0.05 + 0.15 * uniform();
       budget *= uniform() < 0.5 ? 1.0 - change : 1.0 + change;
       budget = std::min(highBudget, std::max(lowBudget, budget));
-      vdr.SetView(orbit(angle, zoom, 512));
+      vdr.SetView(w2View(angle, zoom));
       if (instrument)
       {
         CALLGRIND_START_INSTRUMENTATION;
@@ -290,9 +434,10 @@ int main(int argc, char** argv)
     f.Triangles /= w2Frames;
     f.Operations /= w2Frames;
     f.Lag /= w2Frames;
-    std::printf("W2-like budget updates (%s): %.0f display triangles, %.0f splits + merges per "
+    std::printf("W2-like budget updates (%s, %s): %.0f display triangles, %.0f splits + merges per "
                 "frame, median %.3f ms, mean %.3f ms, worst %.3f ms, mean |triangles - "
                 "budget| / budget %.2f%%\n",
+      w2Label,
       timeLimit > 0 ? ("limit " + std::to_string(1e3 * timeLimit) + " ms").c_str() : "unbounded",
       f.Triangles, f.Operations, 1e3 * f.Median, 1e3 * f.Mean, 1e3 * f.Worst, 100 * f.Lag);
     return f;
@@ -305,10 +450,9 @@ int main(int argc, char** argv)
       return double(state >> 11) * (1.0 / 9007199254740992.0);
     };
     double angle = 0, zoom = 1.0;
-    vdr.SetPixelThreshold(1.0);
-    vdr.SetBackFaceSimplification(true);
+    w2Settings(1.0);
     vdr.Reset();
-    vdr.SetView(orbit(angle, zoom, 512));
+    vdr.SetView(w2View(angle, zoom));
     vdr.UpdateFixedAccuracy(); // warm-up: the first front
     std::vector<double> times;
     W2Figures f;
@@ -318,7 +462,7 @@ int main(int argc, char** argv)
       zoom = std::min(1.6, std::max(0.5, zoom * (1.0 + 0.1 * (2 * uniform() - 1))));
       uniform(); // the budget draws of runW2: same camera path
       uniform();
-      vdr.SetView(orbit(angle, zoom, 512));
+      vdr.SetView(w2View(angle, zoom));
       if (instrument)
       {
         CALLGRIND_START_INSTRUMENTATION;
@@ -337,19 +481,54 @@ int main(int argc, char** argv)
     f.Worst = *std::max_element(times.begin(), times.end());
     f.Triangles /= w2Frames;
     f.Operations /= w2Frames;
-    std::printf("W2-like fixed-accuracy updates (tau 1 px): %.0f display triangles, %.0f splits + "
-                "merges per frame, median %.3f ms, mean %.3f ms, worst %.3f ms\n",
-      f.Triangles, f.Operations, 1e3 * f.Median, 1e3 * f.Mean, 1e3 * f.Worst);
+    std::printf("W2-like fixed-accuracy updates (tau 1 px, %s): %.0f display triangles, %.0f "
+                "splits + merges per frame, median %.3f ms, mean %.3f ms, worst %.3f ms\n",
+      w2Label, f.Triangles, f.Operations, 1e3 * f.Median, 1e3 * f.Mean, 1e3 * f.Worst);
     return f;
+  };
+  // W2-like figures as JSON members (both modes write them).
+  auto w2Json = [&](FILE* out, const W2Figures& fixed, const W2Figures& unbounded,
+                  const W2Figures& bounded) {
+    std::fprintf(out,
+      "  \"w2_settings\": \"%s\",\n"
+      "  \"w2_fixed_display_triangles\": %.0f,\n  \"w2_fixed_operations\": %.0f,\n"
+      "  \"w2_fixed_update_ms_median\": %.4f,\n  \"w2_fixed_update_ms_mean\": %.4f,\n"
+      "  \"w2_fixed_update_ms_worst\": %.4f,\n"
+      "  \"w2_update_ms_median\": %.4f,\n  \"w2_update_ms_mean\": %.4f,\n"
+      "  \"w2_update_ms_worst\": %.4f,\n  \"w2_display_triangles\": %.0f,\n"
+      "  \"w2_operations\": %.0f,\n"
+      "  \"w2_limit_s\": %.4f,\n  \"w2_bounded_update_ms_median\": %.4f,\n"
+      "  \"w2_bounded_update_ms_mean\": %.4f,\n  \"w2_bounded_update_ms_worst\": %.4f,\n"
+      "  \"w2_bounded_budget_lag\": %.4f\n}\n",
+      w2Label, fixed.Triangles, fixed.Operations, 1e3 * fixed.Median, 1e3 * fixed.Mean,
+      1e3 * fixed.Worst, 1e3 * unbounded.Median, 1e3 * unbounded.Mean, 1e3 * unbounded.Worst,
+      unbounded.Triangles, unbounded.Operations, limit, 1e3 * bounded.Median, 1e3 * bounded.Mean,
+      1e3 * bounded.Worst, bounded.Lag);
+  };
+  auto openJson = [&]() -> FILE* {
+    FILE* out = std::fopen(json.c_str(), "w");
+    if (out == nullptr)
+    {
+      std::perror(json.c_str());
+    }
+    return out;
   };
   if (w2Only)
   {
     std::printf("%s: %u triangles\n", path.c_str(), full);
-    runW2Fixed(w2Fixed);
-    runW2(0.0, !w2Fixed);
-    if (limit > 0)
+    const W2Figures fixed = runW2Fixed(w2Fixed);
+    const W2Figures unbounded = runW2(0.0, !w2Fixed);
+    const W2Figures bounded = limit > 0 ? runW2(limit, false) : W2Figures{};
+    if (!json.empty())
     {
-      runW2(limit, false);
+      FILE* out = openJson();
+      if (out == nullptr)
+      {
+        return 1;
+      }
+      std::fprintf(out, "{\n  \"mesh\": \"%s\",\n  \"triangles\": %u,\n", path.c_str(), full);
+      w2Json(out, fixed, unbounded, bounded);
+      std::fclose(out);
     }
     return 0;
   }
@@ -446,15 +625,14 @@ int main(int argc, char** argv)
               "ms, worst %.3f ms per frame\n",
     budget, tau, budgetTriangles / frames, 1e3 * budgetMedian, 1e3 * budgetMean,
     1e3 * budgetWorst);
-  runW2Fixed(false);
+  const W2Figures w2FixedFigures = runW2Fixed(false);
   const W2Figures w2 = runW2(0.0, false);
   const W2Figures w2Bounded = limit > 0 ? runW2(limit, false) : W2Figures{};
   if (!json.empty())
   {
-    FILE* out = std::fopen(json.c_str(), "w");
+    FILE* out = openJson();
     if (out == nullptr)
     {
-      std::perror(json.c_str());
       return 1;
     }
     std::fprintf(out,
@@ -466,18 +644,14 @@ int main(int argc, char** argv)
       "  \"fixed_update_ms_median\": %.4f,\n  \"fixed_update_ms_mean\": %.4f,\n"
       "  \"fixed_update_ms_worst\": %.4f,\n  \"budget\": %u,\n"
       "  \"budget_display_triangles\": %.0f,\n  \"budget_update_ms_median\": %.4f,\n"
-      "  \"budget_update_ms_mean\": %.4f,\n  \"budget_update_ms_worst\": %.4f,\n"
-      "  \"w2_update_ms_median\": %.4f,\n  \"w2_update_ms_mean\": %.4f,\n"
-      "  \"w2_update_ms_worst\": %.4f,\n  \"w2_display_triangles\": %.0f,\n"
-      "  \"w2_limit_s\": %.4f,\n  \"w2_bounded_update_ms_median\": %.4f,\n"
-      "  \"w2_bounded_update_ms_mean\": %.4f,\n  \"w2_bounded_update_ms_worst\": %.4f,\n"
-      "  \"w2_bounded_budget_lag\": %.4f\n}\n",
+      "  \"budget_update_ms_mean\": %.4f,\n  \"budget_update_ms_worst\": %.4f,\n",
       path.c_str(), full, treeSeconds * 1e6 / full, fraction, forcedShare, backSaving,
       frustumSaving, tau, triangles / frames, 1e3 * fixedMedian, 1e3 * fixedMean,
       1e3 * fixedWorst, budget, budgetTriangles / frames, 1e3 * budgetMedian, 1e3 * budgetMean,
-      1e3 * budgetWorst, 1e3 * w2.Median, 1e3 * w2.Mean, 1e3 * w2.Worst, w2.Triangles, limit,
-      1e3 * w2Bounded.Median, 1e3 * w2Bounded.Mean, 1e3 * w2Bounded.Worst, w2Bounded.Lag);
+      1e3 * budgetWorst);
+    w2Json(out, w2FixedFigures, w2, w2Bounded);
     std::fclose(out);
   }
   return 0;
+}
 }
