@@ -1442,7 +1442,7 @@ void vtkMultiresolutionPolyDataMapper::BuildIBO(vtkRenderer* ren, vtkActor* act,
 // points): the object's primitives, then degenerate ones (all indices one
 // vertex: no fragments) as room to grow. gl_PrimitiveID counts the degenerate
 // primitives too, so the cell textures follow the same layout (texel = slot
-// position). An update rewrites only the objects whose content changed, in
+// position; the texels of padding are never read, having no fragments). An update rewrites only the objects whose content changed, in
 // their slot, and uploads only those ranges; an object that outgrows its slot
 // grows into the hole or end after it, or moves to a hole or the end; one that
 // shrinks far below it gives the rest back. Unused ranges (holes) are
