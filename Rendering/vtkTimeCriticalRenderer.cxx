@@ -43,6 +43,7 @@ namespace
 {
 using Clock = std::chrono::steady_clock;
 constexpr double NaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double Infinity = std::numeric_limits<double>::infinity();
 constexpr std::size_t FeatureCount = timecritical::FrameCostModel::FeatureCount;
 
 double Seconds(Clock::time_point a, Clock::time_point b)
@@ -65,6 +66,18 @@ timecritical::FrameCostModel::Coefficients DefaultCoefficients()
 
 /// Typical magnitude of each feature, so the calibrator works on scaled values.
 const double FeatureScales[FeatureCount] = { 1.0, 10.0, 500.0, 1e5, 1e6 };
+
+/// Online refinement may lower a coefficient to this share of the value a
+/// calibration measured (or the user set), no further: frames fitted in the
+/// loop cannot tell triangles from fill when the optimizer trades one for the
+/// other, and a triangle cost that drifts to 0 draws every object in full.
+/// Costs above the calibration are never bounded (that side only coarsens).
+constexpr double CoefficientFloorShare = 0.5;
+
+/// Share of the time left after the fixed part and the objects' minimum that
+/// the safety margin may take: the rest always goes to the objects, so a
+/// large margin coarsens the frame gracefully instead of emptying it.
+constexpr double MaximumMarginShare = 0.5;
 }
 
 struct vtkTimeCriticalRenderer::Internals
@@ -75,7 +88,12 @@ struct vtkTimeCriticalRenderer::Internals
   timecritical::CostModelCalibrator Calibrator{ FeatureCount,
     timecritical::CostModelCalibrator::Options(), FeatureScales };
   timecritical::FrameTimeCorrector Corrector;
+  // Still frames (every object in full) have their own correction: they are
+  // far outside the interactive frames' range, and one of them must not
+  // jolt the next interactive frame's prediction.
+  timecritical::FrameTimeCorrector StillCorrector;
   double RawPrediction = NaN; // the model's prediction of the pending frame, uncorrected
+  bool PendingStill = false;  // the pending frame is a still frame
   timecritical::DegradationModel Degradation;
   timecritical::ActiveSetPolicy ActiveSet;
   timecritical::FullResolutionPolicy FullResolution;
@@ -93,6 +111,7 @@ struct vtkTimeCriticalRenderer::Internals
 
   bool StillRequested = false;
   bool CalibrationRequested = false;
+  double EffectiveTarget = 0.1; // target of the frame being planned (s), +inf for a still frame
 
   // Multiresolution actors of the frame and their objects.
   struct ActorEntry
@@ -168,8 +187,15 @@ struct vtkTimeCriticalRenderer::Internals
 
   void StoreCoefficients()
   {
-    double theta[FeatureCount];
+    double theta[FeatureCount], lower[FeatureCount];
     this->Calibrator.GetCoefficients(theta);
+    for (std::size_t j = 0; j < FeatureCount; ++j)
+    {
+      lower[j] = this->Calibrator.GetLowerBound(j);
+    }
+    timecritical::FrameCostModel floors;
+    floors.SetFeatureWeights(lower);
+    this->Model.SetMinimumCoefficients(floors.GetCoefficients());
     this->Model.SetFeatureWeights(theta);
   }
 
@@ -179,6 +205,44 @@ struct vtkTimeCriticalRenderer::Internals
     this->Model.GetFeatureWeights(theta);
     this->Calibrator.SetCoefficients(theta);
   }
+
+  /// Lower bounds of every coefficient: the physical ones, or a share of
+  /// measured (trusted) coefficients. The defaults are not measured on this
+  /// machine, so they only get the physical bounds.
+  void SetCoefficientFloors(bool measured)
+  {
+    const auto physical = timecritical::FrameCostModel::PhysicalMinimum();
+    timecritical::FrameCostModel::Coefficients floor = physical;
+    if (measured)
+    {
+      const auto& c = this->Model.GetCoefficients();
+      floor.Frame = std::max(physical.Frame, CoefficientFloorShare * c.Frame);
+      floor.DrawCall = std::max(physical.DrawCall, CoefficientFloorShare * c.DrawCall);
+      floor.Object = std::max(physical.Object, CoefficientFloorShare * c.Object);
+      floor.Triangle = std::max(physical.Triangle, CoefficientFloorShare * c.Triangle);
+      floor.Pixel = std::max(physical.Pixel, CoefficientFloorShare * c.Pixel);
+    }
+    this->ApplyFloors(floor);
+  }
+
+  /// The floors bound every fit; the model itself keeps the current
+  /// coefficients even where they are lower (coefficients set by hand are
+  /// used as given), and is bounded by the floors from the next fit on.
+  void ApplyFloors(const timecritical::FrameCostModel::Coefficients& floor)
+  {
+    const auto& c = this->Model.GetCoefficients();
+    auto minimum = floor;
+    minimum.Frame = std::min(floor.Frame, c.Frame);
+    minimum.DrawCall = std::min(floor.DrawCall, c.DrawCall);
+    minimum.Object = std::min(floor.Object, c.Object);
+    minimum.Triangle = std::min(floor.Triangle, c.Triangle);
+    minimum.Pixel = std::min(floor.Pixel, c.Pixel);
+    this->Model.SetMinimumCoefficients(minimum);
+    double lower[FeatureCount];
+    timecritical::FrameCostModel bounds(floor);
+    bounds.GetFeatureWeights(lower);
+    this->Calibrator.SetLowerBounds(lower);
+  }
 };
 
 vtkStandardNewMacro(vtkTimeCriticalRenderer);
@@ -187,6 +251,7 @@ vtkTimeCriticalRenderer::vtkTimeCriticalRenderer()
   : MeasuredFrameTime(NaN)
   , Internal(new Internals)
 {
+  this->Internal->SetCoefficientFloors(false);
   this->Internal->ResetCalibrator();
   this->Internal->Static.SetPixelsPerTriangle(this->StaticPixelsPerTriangle);
   this->Internal->Feedback.SetInitialPixelsPerTriangle(this->StaticPixelsPerTriangle);
@@ -318,18 +383,32 @@ void vtkTimeCriticalRenderer::SetCostCoefficients(
   {
     if (!(value >= 0.0) || !std::isfinite(value))
     {
-      vtkErrorMacro("Cost coefficients must be finite and >= 0");
+      vtkErrorMacro("Cost coefficients must be finite and >= 0; keeping the current ones");
       return;
     }
   }
-  auto c = this->Internal->Model.GetCoefficients();
+  if (!(triangle > 0.0))
+  {
+    vtkErrorMacro("The triangle cost must be positive (a triangle is never free); keeping the "
+                  "current coefficients");
+    return;
+  }
+  Internals& in = *this->Internal;
+  auto c = in.Model.GetCoefficients();
   c.Frame = frame;
   c.DrawCall = drawCall;
   c.Object = 0.0;
   c.Triangle = triangle;
   c.Pixel = pixel;
-  this->Internal->Model.SetCoefficients(c);
-  this->Internal->ResetCalibrator();
+  // Used as given (a zero pixel cost too: tests pin coefficients); they are
+  // trusted like a calibration, so online refinement may lower them to
+  // CoefficientFloorShare of these, and never below the physical minimum.
+  in.Model.SetMinimumCoefficients(timecritical::FrameCostModel::Coefficients());
+  in.Model.SetCoefficients(c);
+  in.SetCoefficientFloors(true);
+  in.ResetCalibrator();
+  in.Corrector.Reset();
+  in.StillCorrector.Reset();
   this->Modified();
 }
 
@@ -623,8 +702,12 @@ void vtkTimeCriticalRenderer::OnWindowEnd()
   this->MeasuredFrameTime = Seconds(in.FrameStart, Clock::now());
   if (this->OnlineCalibration)
   {
-    in.Corrector.Update(in.RawPrediction, this->MeasuredFrameTime);
-    if (in.Calibrator.Update(in.Features.data(), this->MeasuredFrameTime))
+    (in.PendingStill ? in.StillCorrector : in.Corrector)
+      .Update(in.RawPrediction, this->MeasuredFrameTime);
+    // The fronts' refinement time is measured, not modelled by the
+    // features: the model learns the drawing alone.
+    const double drawing = this->MeasuredFrameTime - this->RefinementTime;
+    if (in.Calibrator.Update(in.Features.data(), drawing))
     {
       in.StoreCoefficients();
     }
@@ -644,6 +727,16 @@ void vtkTimeCriticalRenderer::StillRender()
   this->Internal->StillRequested = true;
   this->RenderWindow->Render();
   this->Internal->StillRequested = false;
+}
+
+double vtkTimeCriticalRenderer::GetEffectiveTargetFrameTime()
+{
+  if (this->UseDesiredUpdateRate && this->RenderWindow)
+  {
+    const double rate = this->RenderWindow->GetDesiredUpdateRate();
+    return rate > this->StillUpdateRateThreshold ? 1.0 / rate : Infinity;
+  }
+  return this->TargetFrameTime;
 }
 
 bool vtkTimeCriticalRenderer::Calibrate()
@@ -672,26 +765,20 @@ void vtkTimeCriticalRenderer::DeviceRender()
     in.FrameStartValid = true;
   }
 
-  bool still = in.StillRequested;
-  double target = this->TargetFrameTime;
-  if (this->UseDesiredUpdateRate && this->RenderWindow)
-  {
-    const double rate = this->RenderWindow->GetDesiredUpdateRate();
-    if (!(rate > this->StillUpdateRateThreshold))
-    {
-      still = true;
-    }
-    else
-    {
-      target = 1.0 / rate;
-    }
-  }
+  const double target = in.StillRequested ? Infinity : this->GetEffectiveTargetFrameTime();
+  const bool still = !std::isfinite(target);
+  in.EffectiveTarget = target;
 
   const auto heuristicsStart = Clock::now();
   this->GatherObjects();
-  const bool adaptive = this->Policy != FULL_RESOLUTION && !still;
+  // Automatic calibration runs in the first render with objects, whatever
+  // kind it is: that is the start-up frame the user waits for anyway. With
+  // UseDesiredUpdateRate every frame before the first drag is a still frame;
+  // waiting for an adaptive one would put the calibration's seconds into the
+  // user's first interaction.
   if (in.CalibrationRequested ||
-    (this->AutomaticCalibration && !this->Calibrated && adaptive && !in.ObjectActor.empty()))
+    (this->AutomaticCalibration && !this->Calibrated && !this->CalibrationAttempted &&
+      this->Policy != FULL_RESOLUTION && !in.ObjectActor.empty()))
   {
     in.CalibrationRequested = false;
     this->RunCalibration();
@@ -699,10 +786,8 @@ void vtkTimeCriticalRenderer::DeviceRender()
   this->MeasureObjects();
   this->HeuristicsTime = Seconds(heuristicsStart, Clock::now());
 
-  const double savedTarget = this->TargetFrameTime;
-  this->TargetFrameTime = target;
   this->ChooseResolutions(still);
-  this->TargetFrameTime = savedTarget;
+  this->LastTargetFrameTime = target;
   this->LastRenderWasStill = still;
 
   this->Superclass::DeviceRender();
@@ -823,7 +908,7 @@ void vtkTimeCriticalRenderer::MeasureObjects()
 
   const double dt = std::isfinite(this->MeasuredFrameTime) && this->MeasuredFrameTime > 0.0
     ? this->MeasuredFrameTime
-    : this->TargetFrameTime;
+    : (std::isfinite(in.EffectiveTarget) ? in.EffectiveTarget : this->TargetFrameTime);
   const double focusX = this->FocusPoint[0] * width;
   const double focusY = this->FocusPoint[1] * height;
   timecritical::DegradationModel::DisplayParameters display;
@@ -921,8 +1006,11 @@ void vtkTimeCriticalRenderer::ChooseResolutions(bool still)
   }
   in.Degradation.Evaluate(m, in.Views.data(), in.Weight.data());
   // The model's short-term error in this view (FrameTimeCorrector) scales
-  // every predicted time.
-  const double correction = this->OnlineCalibration ? in.Corrector.GetFactor() : 1.0;
+  // every predicted time; still frames have their own.
+  const double correction = this->OnlineCalibration
+    ? (still ? in.StillCorrector : in.Corrector).GetFactor()
+    : 1.0;
+  in.PendingStill = still;
   for (std::size_t k = 0; k < m; ++k)
   {
     const std::size_t o = in.Visible[k];
@@ -984,11 +1072,26 @@ void vtkTimeCriticalRenderer::ChooseResolutions(bool still)
   input.MaxTriangles = in.VisibleTriangles.data();
   input.Previous = anyPrevious ? in.Previous.data() : nullptr;
   input.Alpha = in.Degradation.GetAlpha();
-  // Plan for predicted + k sigma <= target; the prediction itself stays unbiased.
-  this->SafetyMargin = this->OnlineCalibration
-    ? std::min(this->SafetyFactor * in.Corrector.GetRelativeSpread(), 0.5) * this->TargetFrameTime
-    : 0.0;
-  input.TargetFrameTime = this->TargetFrameTime - this->SafetyMargin;
+  // Plan for predicted + k sigma <= target; the prediction itself stays
+  // unbiased. The margin never takes more than MaximumMarginShare of the time
+  // the fixed part and the objects' coarsest levels leave: when noise and a
+  // large fixed part meet, the objects get the best allocation of the rest
+  // rather than all their coarsest levels.
+  const double target = in.EffectiveTarget;
+  this->SafetyMargin = 0.0;
+  if (!still && this->OnlineCalibration)
+  {
+    double lowest = 0.0;
+    for (std::size_t k = 0; k < m; ++k)
+    {
+      lowest += in.MaxTime[k] * in.MinResolution[k];
+    }
+    const double wanted =
+      std::min(this->SafetyFactor * in.Corrector.GetRelativeSpread(), 0.5) * target;
+    this->SafetyMargin =
+      std::min(wanted, MaximumMarginShare * std::max(0.0, target - fixed - lowest));
+  }
+  input.TargetFrameTime = target - this->SafetyMargin;
   input.FixedTime = fixed;
   input.LastFrameTime = this->MeasuredFrameTime;
 
@@ -1069,72 +1172,133 @@ void vtkTimeCriticalRenderer::FinishFrame()
 }
 
 //------------------------------------------------------------------------------
-// Start-up calibration: a few renders of the current scene at several
-// resolutions and two zoom factors, each timed to completion (glFinish), then
-// a robust non-negative fit. Runs inside DeviceRender(), so nothing recurses
-// into the window and the user sees only the final frame.
+// Start-up calibration: renders of the current scene at several resolutions
+// and three zoom factors, each timed to completion (glFinish), then a robust
+// non-negative fit. Runs inside DeviceRender(), so nothing recurses into the
+// window and the user sees only the final frame.
+//
+// Cost: the samples are sized to the target, not to the scene: a probe finds
+// the per-triangle cost, then each zoom draws what the target affords and
+// half, a fifth and none of it, twice each (the faster counts: scheduling
+// noise only adds). About 12 targets' worth of rendering in all plus the
+// first upload of the vertex data, which the first frame pays anyway; never
+// more than CalibrationTimeLimit targets.
+
+namespace
+{
+constexpr double CalibrationTimeLimit = 30.0; // in targets
+}
 
 void vtkTimeCriticalRenderer::RunCalibration()
 {
   Internals& in = *this->Internal;
+  const auto calibrationStart = Clock::now();
+  this->CalibrationAttempted = true;
   vtkCamera* camera = this->GetActiveCamera();
   const double savedAngle = camera->GetViewAngle();
   const double savedScale = camera->GetParallelScale();
+  // With UseDesiredUpdateRate the interactive target is not known in a still
+  // frame; the setting is then the yardstick (and covers faster targets).
+  const double sizing = std::isfinite(in.EffectiveTarget)
+    ? std::max(in.EffectiveTarget, this->TargetFrameTime)
+    : this->TargetFrameTime;
+  const double deadline = CalibrationTimeLimit * sizing;
   // Zooming out and in varies the objects in view and their coverage, so that
   // the fixed, per-object and fill terms can be told apart from the triangles.
   const double zooms[] = { 1.0, 0.7, 1.8 };
-  // Fractions of the largest triangle count measured, largest first: every
-  // buffer then grows once, in the warm-up, and no sample pays for first use.
-  const double fractions[] = { 1.0, 0.55, 0.25, 0.08, 0.0 };
-  constexpr std::size_t MaxSamples = 3 * 5;
+  const double fractions[] = { 1.0, 0.5, 0.2, 0.0 };
+  constexpr std::size_t MaxSamples = 2 + 3 * 4;
   double x[MaxSamples * FeatureCount];
   double times[MaxSamples];
   std::size_t samples = 0;
-  // Up to twice what the target affords at the current per-triangle cost.
-  const double triangleCost = std::max(in.Model.GetCoefficients().Triangle, 1e-9);
-  const double affordable = 2.0 * this->TargetFrameTime / triangleCost;
-  bool warmedUp = false;
+  int renders = 0;
 
-  for (double zoom : zooms)
-  {
+  auto visibleTriangles = [&]() {
+    double total = 0.0;
+    for (std::size_t o = 0; o < in.ObjectActor.size(); ++o)
+    {
+      total += in.Culled[o] ? 0.0 : in.MaxTriangles[o];
+    }
+    return total;
+  };
+  auto setResolution = [&](double r) {
+    for (std::size_t o = 0; o < in.ObjectActor.size(); ++o)
+    {
+      in.Resolution[o] = in.Culled[o] ? 0.0 : std::max(r, 1e-9);
+    }
+    in.ApplyResolutions();
+  };
+  auto render = [&]() {
+    const auto start = Clock::now();
+    this->Superclass::DeviceRender();
+    glFinish();
+    ++renders;
+    return Seconds(start, Clock::now());
+  };
+  // One sample: the faster of two renders, features from the second.
+  auto sample = [&](double r) {
+    setResolution(r);
+    const double t = std::min(render(), render());
+    this->FinishFrame();
+    times[samples] = t;
+    std::copy(in.Features.begin(), in.Features.end(), x + samples * FeatureCount);
+    ++samples;
+    return t;
+  };
+  auto zoomTo = [&](double zoom) {
     camera->SetViewAngle(savedAngle);
     camera->SetParallelScale(savedScale);
     camera->Zoom(zoom);
     this->MeasureObjects();
-    double visibleTriangles = 0.0;
-    for (std::size_t o = 0; o < in.ObjectActor.size(); ++o)
+  };
+
+  // Probe at the first zoom: the coarsest levels (after an untimed render
+  // that uploads the vertex data), then a quarter of what the current
+  // per-triangle cost says the target affords.
+  zoomTo(zooms[0]);
+  double visible = visibleTriangles();
+  double triangleCost = std::max(in.Model.GetCoefficients().Triangle, 1e-12);
+  if (visible > 0.0)
+  {
+    setResolution(0.0);
+    render();
+    const double coarseTime = sample(0.0);
+    const double coarseTriangles = in.Features[timecritical::FrameCostModel::FeatureTriangles];
+    const double probe = std::min(1.0, 0.25 * sizing / triangleCost / visible);
+    const double probeTime = sample(probe);
+    const double probeTriangles = in.Features[timecritical::FrameCostModel::FeatureTriangles];
+    const double slope = (probeTime - coarseTime) / (probeTriangles - coarseTriangles);
+    if (std::isfinite(slope) && slope > 0.0)
     {
-      visibleTriangles += in.Culled[o] ? 0.0 : in.MaxTriangles[o];
+      triangleCost = slope;
     }
-    if (!(visibleTriangles > 0.0))
+  }
+  for (double zoom : zooms)
+  {
+    if (Seconds(calibrationStart, Clock::now()) > deadline)
+    {
+      break;
+    }
+    zoomTo(zoom);
+    visible = visibleTriangles();
+    if (!(visible > 0.0))
     {
       continue;
     }
-    const double largest = std::min(visibleTriangles, affordable);
+    // What the target affords at the measured cost, largest first: every
+    // buffer grows once, in the first of its two renders.
+    const double largest = std::min(1.0, sizing / triangleCost / visible);
     for (double fraction : fractions)
     {
-      const double r = std::min(1.0, fraction * largest / visibleTriangles);
-      for (std::size_t o = 0; o < in.ObjectActor.size(); ++o)
+      if (fraction == 0.0 && zoom == zooms[0])
       {
-        in.Resolution[o] = in.Culled[o] ? 0.0 : std::max(r, 1e-9);
+        continue; // the probe measured it
       }
-      in.ApplyResolutions();
-      // The fastest of two renders (three for the first, which uploads the
-      // vertex buffers and grows the index buffer): scheduling noise only adds.
-      double best = HUGE_VAL;
-      for (int repeat = warmedUp ? 2 : 3; repeat > 0; --repeat)
+      if (Seconds(calibrationStart, Clock::now()) > deadline)
       {
-        const auto start = Clock::now();
-        this->Superclass::DeviceRender();
-        glFinish();
-        const double t = Seconds(start, Clock::now());
-        best = warmedUp || repeat < 3 ? std::min(best, t) : best;
+        break;
       }
-      warmedUp = true;
-      times[samples] = best;
-      this->FinishFrame();
-      std::copy(in.Features.begin(), in.Features.end(), x + samples * FeatureCount);
-      ++samples;
+      sample(fraction * largest);
     }
   }
   in.FramePending = false;
@@ -1142,22 +1306,34 @@ void vtkTimeCriticalRenderer::RunCalibration()
   camera->SetParallelScale(savedScale);
   // The fixed per-frame work outside DeviceRender() (swap, window events) is
   // not in these samples; online refinement adds it within a few frames.
+  // The fit is bounded by the physical floors only: it is the measurement
+  // the later, relative floors come from.
+  const auto previousFloors = in.Model.GetMinimumCoefficients();
+  in.SetCoefficientFloors(false);
   if (samples >= 3 && in.Calibrator.Calibrate(x, times, samples))
   {
     in.StoreCoefficients();
+    in.SetCoefficientFloors(true);
+    in.Corrector.Reset();
+    in.StillCorrector.Reset();
     this->Calibrated = true;
   }
   else
   {
+    in.ApplyFloors(previousFloors);
     vtkWarningMacro("Cost model calibration found nothing to measure; keeping the current "
                     "coefficients");
   }
+  this->CalibrationRenders += renders;
+  this->CalibrationTime = Seconds(calibrationStart, Clock::now());
 }
 
 void vtkTimeCriticalRenderer::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "TargetFrameTime: " << this->TargetFrameTime << "\n";
+  os << indent << "EffectiveTargetFrameTime: " << this->GetEffectiveTargetFrameTime() << "\n";
+  os << indent << "LastTargetFrameTime: " << this->LastTargetFrameTime << "\n";
   os << indent << "OptimizationTimeLimit: " << this->OptimizationTimeLimit << "\n";
   os << indent << "Policy: " << this->GetPolicyAsString() << "\n";
   os << indent << "DegradationFamily: " << this->DegradationFamily << "\n";
@@ -1173,7 +1349,8 @@ void vtkTimeCriticalRenderer::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "StillUpdateRateThreshold: " << this->StillUpdateRateThreshold << "\n";
   os << indent << "AutomaticCalibration: " << this->AutomaticCalibration << "\n";
   os << indent << "OnlineCalibration: " << this->OnlineCalibration << "\n";
-  os << indent << "Calibrated: " << this->Calibrated << "\n";
+  os << indent << "Calibrated: " << this->Calibrated << " (" << this->CalibrationRenders
+     << " renders, last " << this->CalibrationTime << " s)\n";
   os << indent << "Cost (frame, draw call, triangle, pixel, margin): " << this->GetFrameCost()
      << ", " << this->GetDrawCallCost() << ", " << this->GetTriangleCost() << ", "
      << this->GetPixelCost() << ", " << this->GetCostMargin() << "\n";

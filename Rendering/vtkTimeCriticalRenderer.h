@@ -27,7 +27,18 @@
  * window's DesiredUpdateRate, which VTK's interactors raise while the user
  * interacts and drop to their StillUpdateRate at rest: a rate at or below
  * StillUpdateRateThreshold then draws at full resolution, so the view is
- * coarse while moving and exact at rest with any VTK interactor.
+ * coarse while moving and exact at rest with any VTK interactor. The target
+ * TargetFrameTime is then not used for planning:
+ * GetEffectiveTargetFrameTime() says what is.
+ *
+ * Cost model: calibrated in the first render that has objects (still or
+ * not: the start-up frame the user waits for anyway; about a dozen frames'
+ * worth of the target, see Calibrate()), then refined from every measured
+ * frame. Online refinement cannot lower a coefficient below half of what
+ * the calibration measured (or SetCostCoefficients() gave), nor below what
+ * no hardware beats, so a triangle never becomes free. The safety margin
+ * follows the measured noise but never takes more than half of the time the
+ * fixed part leaves the objects.
  *
  * View-dependent refinement: objects that carry a merge tree (built by
  * vtkMergeTreeBuilder) are drawn as view-dependent fronts (see
@@ -82,13 +93,31 @@ public:
   };
 
   ///@{
-  /// Target frame time t_desired in seconds (> 0 and finite; default 0.1).
+  /**
+   * Target frame time t_desired in seconds (> 0 and finite; default 0.1).
+   * This is the setting: with UseDesiredUpdateRate on it is not what frames
+   * are planned for (see GetEffectiveTargetFrameTime()).
+   */
   void SetTargetFrameTime(double seconds);
   vtkGetMacro(TargetFrameTime, double);
   ///@}
 
+  /**
+   * The target the next frame will be planned for, in seconds: 1 /
+   * DesiredUpdateRate of the render window with UseDesiredUpdateRate on,
+   * else TargetFrameTime; +infinity when the next frame is a still frame
+   * (a rate at or below StillUpdateRateThreshold: every object in full,
+   * whatever it costs). GetLastTargetFrameTime() is that of the last frame.
+   */
+  double GetEffectiveTargetFrameTime();
+
   ///@{
-  /// CPU time limit t_opt of the optimizer in seconds (>= 0; default 0.001).
+  /**
+   * CPU time limit t_opt of the optimizer in seconds (>= 0; default 0.001).
+   * 0: no iteration; the active-set policy then uses the closed-form
+   * allocation (every object at kappa g_i, clamped and scaled to fit; see
+   * timecritical::ActiveSetOptimizer), or last frame's when that is better.
+   */
   void SetOptimizationTimeLimit(double seconds);
   vtkGetMacro(OptimizationTimeLimit, double);
   ///@}
@@ -168,9 +197,12 @@ public:
   ///@{
   /**
    * Cost model calibration. AutomaticCalibration (default on) runs
-   * Calibrate() before the first adaptive frame; OnlineCalibration (default
-   * on) refines the coefficients from every measured frame. Turn both off and
-   * set the coefficients for deterministic resolutions (tests).
+   * Calibrate()'s renders in the first render with objects, still or not
+   * (unless the policy is FULL_RESOLUTION), so that no interactive frame
+   * pays for it; OnlineCalibration (default on) refines the coefficients
+   * from every measured frame, within lower bounds (see the class comment).
+   * Turn both off and set the coefficients for deterministic resolutions
+   * (tests).
    */
   vtkSetMacro(AutomaticCalibration, bool);
   vtkGetMacro(AutomaticCalibration, bool);
@@ -181,19 +213,32 @@ public:
   ///@}
 
   /**
-   * Start-up calibration: renders a few frames of the current scene at
-   * several resolutions and zoom factors, times them, and fits the cost
-   * model. Needs a render window. Returns false (and keeps the previous
-   * coefficients) when the scene has nothing to measure.
+   * Start-up calibration: renders the current scene hidden at several
+   * resolutions and zoom factors, times them, and fits the cost model; the
+   * online refinement may then lower each coefficient to half of the fit, no
+   * further. The renders are sized to the target (the larger of
+   * TargetFrameTime and the effective target): 14 samples of two renders,
+   * each drawing at most what one target affords, about 12 targets in all
+   * plus the first upload of the scene, never more than 30 targets
+   * (GetCalibrationTime() has the last one's seconds). Needs a render
+   * window. Returns false (and keeps the previous coefficients) when the
+   * scene has nothing to measure.
    */
   bool Calibrate();
   vtkGetMacro(Calibrated, bool);
+  vtkGetMacro(CalibrationTime, double);   ///< seconds of the last calibration (0: none)
+  vtkGetMacro(CalibrationRenders, int);   ///< hidden calibration renders so far
 
   ///@{
   /**
    * Cost coefficients (seconds): per frame, per draw call, per triangle and
    * per covered pixel (bounding-box pixels of the objects), plus a safety
-   * margin added to the fixed time.
+   * margin added to the fixed time. All finite and >= 0, the triangle cost
+   * > 0. They are used as given; online refinement (when on) may lower each
+   * to half of it, and never below its physical minimum
+   * (timecritical::FrameCostModel::PhysicalMinimum(): a pixel is never free
+   * either, so a pixel cost of 0 becomes 1e-12 after the first measured
+   * frame).
    */
   void SetCostCoefficients(double frame, double drawCall, double triangle, double pixel);
   double GetFrameCost() const;
@@ -211,6 +256,9 @@ public:
    * OnlineCalibration; none without),
    * so that frames miss the target rarely rather than half the time (the
    * paper's "worst case estimate"). The reported prediction stays unbiased.
+   * The margin k sigma target is capped at half the target and at half of
+   * what the fixed part and the objects' coarsest levels leave of it (so a
+   * noisy machine coarsens the frame rather than emptying it).
    * Default 1.5; 0 plans to the target itself.
    */
   void SetSafetyFactor(double k); ///< in [0, 10]
@@ -232,9 +280,10 @@ public:
 
   ///@{
   /// Statistics of the last frame.
-  vtkGetMacro(PredictedFrameTime, double);
+  vtkGetMacro(PredictedFrameTime, double);   ///< still frames too (their own correction)
   vtkGetMacro(FixedFrameTime, double);       ///< t_fixed of the prediction
-  vtkGetMacro(SafetyMargin, double);         ///< k sigma kept free of the target
+  vtkGetMacro(SafetyMargin, double);         ///< k sigma kept free of the target (s)
+  vtkGetMacro(LastTargetFrameTime, double);  ///< target the last frame was planned for (+inf: still)
   vtkGetMacro(MeasuredFrameTime, double);    ///< last completed frame (NaN before any)
   vtkGetMacro(OptimizationTime, double);     ///< seconds spent in the policy
   vtkGetMacro(HeuristicsTime, double);       ///< seconds spent culling and measuring
@@ -326,6 +375,10 @@ protected:
   bool AutomaticCalibration = true;
   bool OnlineCalibration = true;
   bool Calibrated = false;
+  bool CalibrationAttempted = false; // automatic calibration runs once, even if it fails
+  double CalibrationTime = 0.0;
+  int CalibrationRenders = 0;
+  double LastTargetFrameTime = 0.1;
   double SafetyFactor = 1.5;
   double NewObjectCostFactor = 2.0;
   bool ViewDependentRefinement = true;

@@ -77,6 +77,7 @@ void ActiveSetOptimizer::Reserve(std::size_t n)
     this->Lo.resize(n);
     this->C.resize(n);
     this->G.resize(n);
+    this->Scratch.resize(n);
     this->State.resize(n);
     this->Order.resize(n);
     this->Key.resize(n);
@@ -177,6 +178,108 @@ void ActiveSetOptimizer::BetaReduce(double* r, double budget, double cost)
       }
     }
   }
+}
+
+double ActiveSetOptimizer::ClosedForm(double* r, double budget)
+{
+  // Every object free: r_i = clamp(kappa g_i, rmin_i, 1), the optimum's form,
+  // with kappa from eq. 14, then a few safeguarded Newton corrections on
+  // phi(kappa) = sum tmax_i clamp(kappa g_i) = budget (as in ProjectedStep),
+  // keeping a bracket [kLo, kHi] with phi(kLo) <= budget < phi(kHi) (at
+  // worst kappa = 0: rmin, and kappa = inf: every object in full, which is
+  // over budget or Solve() would not get here). The answer is the point on
+  // the segment between the bracket's two allocations that spends the
+  // budget exactly: within the bounds, feasible, and the optimum whenever a
+  // correction lands on it. A fixed number of O(n) passes; none repeats.
+  constexpr int Passes = 6;
+  const std::size_t n = this->N;
+  auto clampAt = [this](double kappa, std::size_t i) {
+    const double y = kappa * this->G[i];
+    return std::isfinite(y) ? Clamp(y, this->Lo[i], 1.0) : (this->G[i] > 0.0 ? 1.0 : this->Lo[i]);
+  };
+  double weightSum = 0.0;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    weightSum += this->State[i] == Free ? this->T[i] * this->G[i] : 0.0;
+  }
+  double kLo = 0.0, kHi = Infinity;
+  double kappa = weightSum > 0.0 ? budget / weightSum : Infinity;
+  for (int pass = 0; pass < Passes && kappa > kLo && kappa < kHi; ++pass)
+  {
+    double clamped = 0.0, interior = 0.0, phi = 0.0;
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      if (this->State[i] != Free)
+      {
+        continue;
+      }
+      const double y = kappa * this->G[i];
+      if (y <= this->Lo[i])
+      {
+        clamped += this->T[i] * this->Lo[i];
+      }
+      else if (y >= 1.0)
+      {
+        clamped += this->T[i];
+      }
+      else
+      {
+        interior += this->T[i] * this->G[i];
+        phi += this->T[i] * y;
+      }
+    }
+    phi += clamped;
+    (phi <= budget ? kLo : kHi) = kappa;
+    if (phi == budget)
+    {
+      kHi = kappa;
+      break;
+    }
+    double next = interior > 0.0 ? (budget - clamped) / interior : -1.0;
+    if (!(next > kLo && next < kHi))
+    {
+      next = !std::isfinite(kHi) ? 4.0 * std::max(kLo, kappa)
+                                 : (kLo > 0.0 ? std::sqrt(kLo * kHi) : 0.25 * kHi);
+    }
+    kappa = next;
+  }
+  // The segment from the feasible allocation at kLo to the one at kHi.
+  double costBelow = 0.0, costAbove = 0.0;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    if (this->State[i] == Free)
+    {
+      costBelow += this->T[i] * clampAt(kLo, i);
+      costAbove += this->T[i] * clampAt(kHi, i);
+    }
+  }
+  const double s = costAbove > costBelow
+    ? Clamp((budget - costBelow) / (costAbove - costBelow), 0.0, 1.0)
+    : 0.0;
+  double cost = 0.0;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    if (this->State[i] == Free)
+    {
+      const double below = clampAt(kLo, i);
+      r[i] = Clamp(below + s * (clampAt(kHi, i) - below), this->Lo[i], 1.0);
+      cost += this->T[i] * r[i];
+    }
+  }
+  if (cost > budget) // rounding: fall back to the feasible end
+  {
+    cost = 0.0;
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      if (this->State[i] == Free)
+      {
+        r[i] = clampAt(kLo, i);
+        cost += this->T[i] * r[i];
+      }
+    }
+  }
+  this->Work += static_cast<std::size_t>(Passes + 3) * n;
+  return cost;
 }
 
 bool ActiveSetOptimizer::ProjectedStep(
@@ -504,7 +607,9 @@ ActiveSetOptimizer::Result ActiveSetOptimizer::Solve(
     }
     else if (t == 0.0)
     {
-      this->State[i] = PinnedHigh;
+      // Not free: a broken cost model (see the class comment).
+      this->State[i] = PinnedLow;
+      ++result.ZeroCostCount;
     }
     else
     {
@@ -518,7 +623,7 @@ ActiveSetOptimizer::Result ActiveSetOptimizer::Solve(
   }
   this->Work += n;
 
-  auto pinned = [&](std::size_t i) { return this->State[i] == PinnedLow ? this->Lo[i] : 1.0; };
+  auto pinned = [&](std::size_t i) { return this->Lo[i]; };
   auto objectiveOf = [&]() {
     double f = 0.0;
     for (std::size_t i = 0; i < n; ++i)
@@ -576,7 +681,9 @@ ActiveSetOptimizer::Result ActiveSetOptimizer::Solve(
     return finish();
   }
 
-  // Start point: rmin, or the previous resolutions reduced until feasible.
+  // Start point: rmin, or the previous resolutions reduced until feasible;
+  // without time to iterate, the closed form (or the warm start if better).
+  const bool noIteration = !(timeLimit > 0.0);
   double cost = 0.0;
   for (std::size_t i = 0; i < n; ++i)
   {
@@ -596,6 +703,28 @@ ActiveSetOptimizer::Result ActiveSetOptimizer::Solve(
   if (cost > budget)
   {
     this->BetaReduce(r, budget, cost);
+  }
+  if (noIteration)
+  {
+    double* closed = warmStart ? this->Scratch.data() : r;
+    if (warmStart)
+    {
+      std::copy(r, r + n, closed);
+    }
+    this->ClosedForm(closed, budget);
+    if (warmStart)
+    {
+      double closedObjective = 0.0, warmObjective = 0.0;
+      for (std::size_t i = 0; i < n; ++i)
+      {
+        closedObjective += ResolutionProblem::Term(this->C[i], this->Alpha, closed[i]);
+        warmObjective += ResolutionProblem::Term(this->C[i], this->Alpha, r[i]);
+      }
+      if (closedObjective < warmObjective)
+      {
+        std::copy(closed, closed + n, r);
+      }
+    }
   }
   for (std::size_t i = 0; i < n; ++i)
   {

@@ -51,6 +51,21 @@ namespace timecritical
  * TimeLimit (t_opt) is checked every ClockCheckWork object visits; at any stop
  * (time, MaxIterations, MaxSteps) the current point is returned, feasible and
  * with an objective that never increases with more iterations.
+ *
+ * TimeLimit <= 0 asks for no iteration at all: the answer is then the
+ * closed-form allocation (r_i = clamp(kappa g_i, rmin_i, 1) for every object,
+ * kappa from eq. 14 and six safeguarded Newton corrections for the clamps,
+ * then the point between the last feasible and infeasible allocations that
+ * spends the budget exactly: a fixed number of O(n) passes), or the warm
+ * start when that is better. It is the optimum when the corrections reach
+ * it, spends the whole budget, and is never worse than rmin, where the
+ * paper's start point would leave every object.
+ *
+ * An object whose tmax is 0 (or not finite, or negative) is left at rmin and
+ * kept out of the problem: a zero cost comes from a cost model that failed,
+ * and drawing such an object in full is how a collapsed model stalls a frame.
+ * A caller that wants an object drawn in full outside the budget gives it
+ * rmin = 1.
  */
 class TIMECRITICALRENDERINGCORE_EXPORT ActiveSetOptimizer
 {
@@ -68,7 +83,7 @@ public:
 
   struct Options
   {
-    double TimeLimit = 1e-3;             ///< t_opt (s) for the whole call; <= 0: return the start point
+    double TimeLimit = 1e-3;             ///< t_opt (s) for the whole call; <= 0: closed form, no iteration
     int MaxIterations = 100000;          ///< Algorithm 1 iterations
     long MaxSteps = 10000000;            ///< O(n) passes (subspace solves and Newton rounds)
     double Beta = 0.8;                   ///< warm start reduction factor (section 5.3.1), in (0, 1)
@@ -92,6 +107,7 @@ public:
     double Seconds = 0.0;    ///< wall time of the call
     std::size_t FreeCount = 0, LowerCount = 0, UpperCount = 0; ///< final working set
     std::size_t InvalidCount = 0; ///< objects with a NaN/negative tmax, left at rmin
+    std::size_t ZeroCostCount = 0; ///< objects with tmax = 0, left at rmin
   };
 
   ActiveSetOptimizer() = default;
@@ -107,7 +123,7 @@ public:
   /**
    * Solve for problem.Count objects. resolutions (size Count): on input, when
    * warmStart, the previous frame's resolutions (NaN or <= 0 for a new object);
-   * on output, the result. Objects with tmax = 0 get 1, with c = 0 get rmin.
+   * on output, the result. Objects with tmax <= 0 or c = 0 get rmin.
    */
   Result Solve(const ResolutionProblem& problem, double* resolutions, bool warmStart);
 
@@ -119,12 +135,12 @@ private:
     Free = 0,
     Lower = 1,
     Upper = 2,
-    PinnedLow = 3, ///< invalid tmax: left at rmin, not in the problem
-    PinnedHigh = 4 ///< tmax = 0: full resolution is free
+    PinnedLow = 3 ///< tmax invalid or 0: left at rmin, not in the problem
   };
 
   double Power(double x) const; // x^gamma with fast paths
   void BetaReduce(double* r, double budget, double cost);
+  double ClosedForm(double* r, double budget);
   bool ProjectedStep(double* r, double slack, double kappa0, double& objective, std::size_t& changes);
   std::size_t LineStep(double* r, double kappa, double& objective);
   bool Release(double kappa, bool slackTime);
@@ -132,7 +148,7 @@ private:
 
   Options Opts;
   // Per-object data of the current call (sized to the largest n seen).
-  std::vector<double> T, Lo, C, G;
+  std::vector<double> T, Lo, C, G, Scratch;
   std::vector<std::uint8_t> State;
   std::vector<std::uint32_t> Order; // warm-start reduction order
   std::vector<std::int32_t> Key;     // its buckets

@@ -181,6 +181,30 @@ void SolveNonNegative(const Matrix& g, const Vector& h, std::size_t d, double* x
   }
 }
 
+/// min x'gx - 2h'x subject to x >= lower (lower may be null: 0): the
+/// non-negative problem in u = x - lower, whose linear term is h - g lower.
+void SolveBounded(const Matrix& g, Vector h, std::size_t d, const double* lower, double* x)
+{
+  if (lower)
+  {
+    for (std::size_t i = 0; i < d; ++i)
+    {
+      for (std::size_t j = 0; j < d; ++j)
+      {
+        h[i] -= g[i * MaxD + j] * lower[j];
+      }
+    }
+  }
+  SolveNonNegative(g, h, d, x);
+  if (lower)
+  {
+    for (std::size_t j = 0; j < d; ++j)
+    {
+      x[j] += lower[j];
+    }
+  }
+}
+
 double MedianOf(std::vector<double>& values)
 {
   if (values.empty())
@@ -207,8 +231,8 @@ bool FiniteRow(const double* x, std::size_t d)
 /// The robust batch fit; also returns the feature scales and the final
 /// weighted normal matrix of the scaled features (for the online state).
 bool Fit(const double* x, const double* times, std::size_t samples, std::size_t d,
-  const CostModelCalibrator::Options& options, double* theta, double* scales, Matrix* normal,
-  double* residualScale)
+  const CostModelCalibrator::Options& options, const double* lower, double* theta, double* scales,
+  Matrix* normal, double* residualScale)
 {
   std::vector<std::size_t> rows;
   for (std::size_t s = 0; s < samples; ++s)
@@ -231,6 +255,11 @@ bool Fit(const double* x, const double* times, std::size_t samples, std::size_t 
   if (rows.empty())
   {
     return false;
+  }
+  Vector scaledLower{};
+  for (std::size_t j = 0; j < d; ++j)
+  {
+    scaledLower[j] = lower ? lower[j] * scales[j] : 0.0;
   }
   std::vector<double> weight(rows.size(), 1.0), residual(rows.size());
   std::vector<double> scratch;
@@ -262,7 +291,7 @@ bool Fit(const double* x, const double* times, std::size_t samples, std::size_t 
       }
     }
     Vector next{};
-    SolveNonNegative(g, h, d, next.data());
+    SolveBounded(g, h, d, scaledLower.data(), next.data());
     scratch.clear();
     for (std::size_t k = 0; k < rows.size(); ++k)
     {
@@ -415,8 +444,12 @@ void CostModelCalibrator::Solve()
     this->Reset(this->Opts.PriorWeight); // keeps Theta as the prior
     return;
   }
-  Vector theta{};
-  SolveNonNegative(g, h, this->D, theta.data());
+  Vector theta{}, lower{};
+  for (std::size_t j = 0; j < this->D; ++j)
+  {
+    lower[j] = this->Lower[j] * (this->FeatureScale[j] > 0.0 ? this->FeatureScale[j] : 1.0);
+  }
+  SolveBounded(g, h, this->D, lower.data(), theta.data());
   std::copy(theta.begin(), theta.begin() + static_cast<std::ptrdiff_t>(this->D), e.Theta.begin());
 }
 
@@ -451,10 +484,30 @@ void CostModelCalibrator::SetCoefficients(const double* theta)
 {
   for (std::size_t j = 0; j < this->D; ++j)
   {
-    const double t = std::isfinite(theta[j]) && theta[j] > 0.0 ? theta[j] : 0.0;
+    const double t =
+      std::max(this->Lower[j], std::isfinite(theta[j]) && theta[j] > 0.0 ? theta[j] : 0.0);
     this->Main.Theta[j] = t * (this->FeatureScale[j] > 0.0 ? this->FeatureScale[j] : 1.0);
   }
   this->Reset(this->Opts.PriorWeight);
+}
+
+void CostModelCalibrator::SetLowerBounds(const double* lower)
+{
+  for (std::size_t j = 0; j < this->D; ++j)
+  {
+    const double b = lower ? lower[j] : 0.0;
+    this->Lower[j] = std::isfinite(b) && b > 0.0 ? b : 0.0;
+    // Raise the estimate and the prior; the information stays (the next
+    // solve honours the bound).
+    const double scale = this->FeatureScale[j] > 0.0 ? this->FeatureScale[j] : 1.0;
+    this->Main.Theta[j] = std::max(this->Main.Theta[j], this->Lower[j] * scale);
+    this->Main.Prior[j] = std::max(this->Main.Prior[j], this->Lower[j] * scale);
+  }
+}
+
+double CostModelCalibrator::GetLowerBound(std::size_t j) const
+{
+  return j < this->D ? this->Lower[j] : 0.0;
 }
 
 double CostModelCalibrator::GetCoefficient(std::size_t j) const
@@ -696,14 +749,21 @@ bool CostModelCalibrator::Refit()
 }
 
 bool CostModelCalibrator::FitBatch(const double* x, const double* times, std::size_t samples,
-  std::size_t featureCount, double* theta, const Options& options, double* residualScale)
+  std::size_t featureCount, double* theta, const Options& options, double* residualScale,
+  const double* lower)
 {
   if (featureCount == 0 || featureCount > MaxFeatures || !x || !times || !theta)
   {
     return false;
   }
-  std::array<double, MaxFeatures> scales{};
-  return Fit(x, times, samples, featureCount, options, theta, scales.data(), nullptr, residualScale);
+  std::array<double, MaxFeatures> scales{}, bounds{};
+  for (std::size_t j = 0; j < featureCount; ++j)
+  {
+    const double b = lower ? lower[j] : 0.0;
+    bounds[j] = std::isfinite(b) && b > 0.0 ? b : 0.0;
+  }
+  return Fit(x, times, samples, featureCount, options, bounds.data(), theta, scales.data(), nullptr,
+    residualScale);
 }
 
 bool CostModelCalibrator::Calibrate(const double* x, const double* times, std::size_t samples)
@@ -712,7 +772,8 @@ bool CostModelCalibrator::Calibrate(const double* x, const double* times, std::s
   Matrix normal{};
   double sigma = 0.0;
   if (!x || !times ||
-    !Fit(x, times, samples, this->D, this->Opts, theta.data(), scales.data(), &normal, &sigma))
+    !Fit(x, times, samples, this->D, this->Opts, this->Lower.data(), theta.data(), scales.data(),
+      &normal, &sigma))
   {
     return false;
   }

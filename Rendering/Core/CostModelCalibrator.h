@@ -81,7 +81,20 @@ public:
   /// Prior coefficients (e.g. defaults), also the current estimate; negative
   /// or non-finite ones become 0. Forgets the accumulated information.
   void SetCoefficients(const double* theta);
-  /// theta (unscaled), FeatureCount values, all >= 0 and finite.
+  /**
+   * Lower bounds of the coefficients (unscaled, FeatureCount values; null or
+   * non-positive: 0). Every estimate honours them: the online fit, a refit
+   * after a change of regime and Calibrate(). Non-negativity alone lets a
+   * fit drive a coefficient to 0 when its feature moves with another one or
+   * when the measured time stops depending on it (a time-critical renderer
+   * holds the frame time constant whatever the triangles), and a triangle
+   * that costs nothing makes the optimizer draw everything. The current
+   * estimate is raised to the bounds at once.
+   */
+  void SetLowerBounds(const double* lower);
+  double GetLowerBound(std::size_t j) const;
+
+  /// theta (unscaled), FeatureCount values, all >= their lower bounds and finite.
   void GetCoefficients(double* theta) const;
   double GetCoefficient(std::size_t j) const;
 
@@ -98,12 +111,13 @@ public:
 
   /**
    * Robust non-negative least squares over samples rows of x (row-major,
-   * samples x featureCount) and times; theta receives featureCount values.
-   * Returns false (theta = 0) when there are no valid samples.
+   * samples x featureCount) and times, with theta >= lower when lower is
+   * given; theta receives featureCount values. Returns false (theta = 0)
+   * when there are no valid samples.
    */
   static bool FitBatch(const double* x, const double* times, std::size_t samples,
     std::size_t featureCount, double* theta, const Options& options = Options(),
-    double* residualScale = nullptr);
+    double* residualScale = nullptr, const double* lower = nullptr);
 
   /// FitBatch() and initialize the online state from it.
   bool Calibrate(const double* x, const double* times, std::size_t samples);
@@ -136,6 +150,7 @@ private:
   long Samples = 0;
   double MeanTime = 0.0;
   std::array<double, MaxFeatures> FeatureScale{};
+  std::array<double, MaxFeatures> Lower{}; ///< lower bounds, unscaled
   Estimator Main;
   // The last frames: raw features, time, and -1/0/+1 = rejected below / used / rejected above.
   std::array<std::array<double, MaxFeatures>, MaxFrames> FrameFeatures{};

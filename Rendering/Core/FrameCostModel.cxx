@@ -23,12 +23,35 @@ FrameCostModel::FrameCostModel(const Coefficients& coefficients, PixelMode mode)
 
 void FrameCostModel::SetCoefficients(const Coefficients& c)
 {
-  this->Coeffs.Frame = Sanitize(c.Frame);
-  this->Coeffs.DrawCall = Sanitize(c.DrawCall);
-  this->Coeffs.Object = Sanitize(c.Object);
-  this->Coeffs.Triangle = Sanitize(c.Triangle);
-  this->Coeffs.Pixel = Sanitize(c.Pixel);
+  const Coefficients& low = this->Minimum;
+  this->Coeffs.Frame = std::max(low.Frame, Sanitize(c.Frame));
+  this->Coeffs.DrawCall = std::max(low.DrawCall, Sanitize(c.DrawCall));
+  this->Coeffs.Object = std::max(low.Object, Sanitize(c.Object));
+  this->Coeffs.Triangle = std::max(low.Triangle, Sanitize(c.Triangle));
+  this->Coeffs.Pixel = std::max(low.Pixel, Sanitize(c.Pixel));
   this->Coeffs.Margin = Sanitize(c.Margin);
+}
+
+void FrameCostModel::SetMinimumCoefficients(const Coefficients& minimum)
+{
+  this->Minimum.Frame = Sanitize(minimum.Frame);
+  this->Minimum.DrawCall = Sanitize(minimum.DrawCall);
+  this->Minimum.Object = Sanitize(minimum.Object);
+  this->Minimum.Triangle = Sanitize(minimum.Triangle);
+  this->Minimum.Pixel = Sanitize(minimum.Pixel);
+  this->Minimum.Margin = 0.0;
+  this->SetCoefficients(this->Coeffs);
+}
+
+FrameCostModel::Coefficients FrameCostModel::PhysicalMinimum()
+{
+  Coefficients c;
+  c.Frame = 1e-5;
+  c.DrawCall = 1e-7;
+  c.Object = 0.0;
+  c.Triangle = 1e-11;
+  c.Pixel = 1e-12;
+  return c;
 }
 
 double FrameCostModel::ObjectCost(double maxTriangles, double pixels, double r) const

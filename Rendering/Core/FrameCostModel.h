@@ -75,8 +75,30 @@ public:
   FrameCostModel() = default;
   explicit FrameCostModel(const Coefficients& coefficients, PixelMode mode = PixelMode::Overlapped);
 
+  /// Coefficients, each raised to its minimum (see SetMinimumCoefficients).
   void SetCoefficients(const Coefficients& coefficients);
   const Coefficients& GetCoefficients() const { return this->Coeffs; }
+
+  /**
+   * Lower bounds of the coefficients (default all 0: the model as given).
+   * A model fitted to measured frames can trade one term for another when
+   * features move together (a time-critical renderer keeps the frame time
+   * constant by trading triangles against fill), down to a triangle that
+   * costs nothing; with positive bounds every object with triangles has a
+   * positive tmax and every frame a positive time. The current coefficients
+   * are raised to the new bounds; Margin has none.
+   */
+  void SetMinimumCoefficients(const Coefficients& minimum);
+  const Coefficients& GetMinimumCoefficients() const { return this->Minimum; }
+
+  /**
+   * Bounds no hardware beats, for SetMinimumCoefficients(): 10 us per frame
+   * (clear and swap), 0.1 us per draw call, 10 ps per triangle (100 G/s) and
+   * 1 ps per pixel (1 T/s), no per-object term. They keep predictions
+   * positive; a bound relative to a calibration on the machine is what keeps
+   * a fit from collapsing in practice.
+   */
+  static Coefficients PhysicalMinimum();
   void SetPixelMode(PixelMode mode) { this->Mode = mode; }
   PixelMode GetPixelMode() const { return this->Mode; }
 
@@ -117,6 +139,7 @@ public:
 
 private:
   Coefficients Coeffs;
+  Coefficients Minimum;
   PixelMode Mode = PixelMode::Overlapped;
 };
 }

@@ -250,7 +250,9 @@ void GreedyLODPolicy::Choose(const PolicyInput& input, double* r, PolicyResult& 
     }
     if (this->T[i] == 0.0)
     {
-      this->Level[i] = top; // free: always full
+      // No valid cost: lowest level, as the optimizer does (a zero cost is a
+      // failed model, not a free object).
+      this->Level[i] = lowest;
       continue;
     }
     this->Level[i] = this->PreviousLevel[i] >= 0 ? this->PreviousLevel[i] : lowest;
@@ -263,7 +265,10 @@ void GreedyLODPolicy::Choose(const PolicyInput& input, double* r, PolicyResult& 
   }
   if (fullCost <= budget) // everything fits: no trade to make
   {
-    std::fill(r, r + n, 1.0);
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      r[i] = this->T[i] > 0.0 ? 1.0 : this->Resolution(i, this->Level[i]);
+    }
     this->Input = nullptr;
     return;
   }
@@ -321,7 +326,7 @@ void GreedyLODPolicy::Choose(const PolicyInput& input, double* r, PolicyResult& 
   }
   for (std::size_t i = 0; i < n; ++i)
   {
-    r[i] = this->T[i] > 0.0 ? this->Resolution(i, this->Level[i]) : 1.0;
+    r[i] = this->Resolution(i, this->Level[i]);
   }
   result.Iterations = static_cast<int>(std::min<long>(moves, 2147483647L));
   result.Converged = moves < cap;

@@ -24,11 +24,12 @@ struct View
     const double c = this->P.Weight[i];
     return std::isfinite(c) && c > 0.0 ? c : 0.0;
   }
-  /// tmax, or -1 for an invalid one (object left at rmin, outside the problem).
+  /// tmax, or -1 for an invalid or zero one (object left at rmin, outside the
+  /// problem, as in ActiveSetOptimizer: a zero cost is a failed model).
   double T(std::size_t i) const
   {
     const double t = this->P.MaxTime[i];
-    return std::isfinite(t) && t >= 0.0 ? t : -1.0;
+    return std::isfinite(t) && t > 0.0 ? t : -1.0;
   }
   /// r_i(lambda); lambda = 0 means no time constraint.
   double At(std::size_t i, double lambda) const
@@ -36,9 +37,9 @@ struct View
     const double t = this->T(i), c = this->C(i), lo = this->Lo(i);
     if (t < 0.0 || c == 0.0)
     {
-      return t == 0.0 ? 1.0 : lo;
+      return lo;
     }
-    if (t == 0.0 || lambda <= 0.0)
+    if (lambda <= 0.0)
     {
       return 1.0;
     }
@@ -110,7 +111,7 @@ ReferenceResolutionSolver::Result ReferenceResolutionSolver::Solve(
   {
     for (std::size_t i = 0; i < n; ++i)
     {
-      r[i] = v.T(i) == 0.0 ? 1.0 : v.Lo(i);
+      r[i] = v.Lo(i);
     }
     result.Infeasible = true;
     report();

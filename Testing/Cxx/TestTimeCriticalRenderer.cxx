@@ -430,6 +430,14 @@ TEST(TimeCriticalRenderer, BadSettingsAreRejected)
   renderer->SetCostCoefficients(1e-3, -1.0, 1e-6, 0.0);
   EXPECT_TRUE(errors->GetError());
   EXPECT_GT(renderer->GetTriangleCost(), 0.0);
+  // A triangle is never free: a zero triangle cost is refused, the previous
+  // coefficients stay (the others are used as given).
+  renderer->SetCostCoefficients(1e-3, 0.0, 3e-7, 0.0);
+  errors->Clear();
+  renderer->SetCostCoefficients(1e-3, 0.0, 0.0, 1e-9);
+  EXPECT_TRUE(errors->GetError());
+  EXPECT_EQ(renderer->GetTriangleCost(), 3e-7);
+  EXPECT_EQ(renderer->GetPixelCost(), 0.0);
   errors->Clear();
   renderer->StillRender(); // no window
   EXPECT_TRUE(errors->GetError());
@@ -531,6 +539,118 @@ TEST(TimeCriticalRenderer, EmptySceneAndEmptyBlocks)
   EXPECT_EQ(scene.Renderer->GetObjectTrianglesDrawn(), 0);
 }
 
+TEST(TimeCriticalRenderer, CalibratesInTheStartUpFrameNotInTheFirstInteraction)
+{
+  // The interactors' pattern: still frames until the first drag. The
+  // calibration belongs to the first of them (the start-up frame); frames
+  // after it, interactive or still, render nothing hidden.
+  Scene scene(SphereGrid(4));
+  scene.Renderer->UseDesiredUpdateRateOn();
+  scene.Window->SetDesiredUpdateRate(0.0001);
+  EXPECT_EQ(scene.Renderer->GetCalibrationRenders(), 0);
+  EXPECT_EQ(scene.Renderer->GetCalibrationTime(), 0.0);
+  scene.Window->Render();
+  EXPECT_TRUE(scene.Renderer->GetLastRenderWasStill());
+  EXPECT_EQ(scene.Renderer->GetObjectTrianglesDrawn(), scene.TotalTriangles());
+  EXPECT_TRUE(scene.Renderer->GetCalibrated());
+  const int renders = scene.Renderer->GetCalibrationRenders();
+  EXPECT_GE(renders, 7); // probe and at least the first zoom's samples
+  EXPECT_LE(renders, 2 * 14 + 1);
+  EXPECT_GT(scene.Renderer->GetCalibrationTime(), 0.0);
+  // Sized to the target: no more than 30 targets' worth, plus the first upload.
+  EXPECT_LT(scene.Renderer->GetCalibrationTime(), 30 * 0.1 + 5.0);
+  scene.Window->Render(); // still again
+  scene.Window->SetDesiredUpdateRate(20.0);
+  for (int frame = 0; frame < 4; ++frame)
+  {
+    scene.Renderer->GetActiveCamera()->Azimuth(5.0);
+    scene.Window->Render();
+    EXPECT_FALSE(scene.Renderer->GetLastRenderWasStill());
+  }
+  scene.Window->SetDesiredUpdateRate(0.0001);
+  scene.Window->Render();
+  EXPECT_EQ(scene.Renderer->GetCalibrationRenders(), renders);
+
+  // Without UseDesiredUpdateRate the first frame calibrates too, and a
+  // full-resolution policy never does.
+  Scene plain(SphereGrid(2));
+  plain.Window->Render();
+  EXPECT_TRUE(plain.Renderer->GetCalibrated());
+  Scene full(SphereGrid(2));
+  full.Renderer->SetPolicyToFullResolution();
+  full.Window->Render();
+  EXPECT_FALSE(full.Renderer->GetCalibrated());
+  EXPECT_EQ(full.Renderer->GetCalibrationRenders(), 0);
+}
+
+TEST(TimeCriticalRenderer, EffectiveTargetFollowsTheDesiredUpdateRate)
+{
+  Scene scene(SphereGrid(3));
+  scene.PinCosts(1e-6);
+  EXPECT_EQ(scene.Renderer->GetEffectiveTargetFrameTime(), 0.1);
+  scene.Renderer->UseDesiredUpdateRateOn();
+  const double total = static_cast<double>(scene.TotalTriangles());
+  const double target = 0.002 + 1e-6 * 0.3 * total;
+  scene.Window->SetDesiredUpdateRate(1.0 / target);
+  EXPECT_NEAR(scene.Renderer->GetEffectiveTargetFrameTime(), target, 1e-15);
+  EXPECT_EQ(scene.Renderer->GetTargetFrameTime(), 0.1); // the setting, not the plan
+  scene.Window->Render();
+  EXPECT_NEAR(scene.Renderer->GetLastTargetFrameTime(), target, 1e-15);
+  EXPECT_LE(scene.Renderer->GetPredictedFrameTime(), target * (1 + 1e-9));
+  EXPECT_GE(scene.Renderer->GetPredictedFrameTime(), 0.95 * target);
+  scene.Window->SetDesiredUpdateRate(0.0001);
+  EXPECT_TRUE(std::isinf(scene.Renderer->GetEffectiveTargetFrameTime()));
+  scene.Window->Render();
+  EXPECT_TRUE(std::isinf(scene.Renderer->GetLastTargetFrameTime()));
+  EXPECT_TRUE(scene.Renderer->GetLastRenderWasStill());
+  // A still frame is predicted too: every object in full.
+  EXPECT_NEAR(scene.Renderer->GetPredictedFrameTime(), 0.002 + 1e-6 * total, 1e-9);
+}
+
+TEST(TimeCriticalRenderer, LargeMarginCoarsensInsteadOfEmptyingTheFrame)
+{
+  // The soak's flicker: a 60 ms fixed part and a margin of half the 100 ms
+  // target left nothing, and every object went to its coarsest level. The
+  // margin now takes at most half of what is left; the objects get the rest.
+  Scene scene(SphereGrid(5));
+  scene.Renderer->AutomaticCalibrationOff();
+  scene.Renderer->SetCostCoefficients(0.06, 0.0, 1e-6, 0.0);
+  scene.Renderer->SetNewObjectCostFactor(1.0);
+  scene.Renderer->SetSafetyFactor(10.0); // 10 x the initial spread: 0.5 target wanted
+  scene.Renderer->SetTargetFrameTime(0.1);
+  scene.Window->Render(); // online calibration on, no frame measured yet: deterministic
+  const double fixed = scene.Renderer->GetFixedFrameTime();
+  EXPECT_NEAR(fixed, 0.06, 1e-6);
+  const double margin = scene.Renderer->GetSafetyMargin();
+  EXPECT_GT(margin, 0.0);
+  EXPECT_LE(margin, 0.5 * (0.1 - fixed) + 1e-12);
+  double coarsest = 0.0;
+  for (vtkIdType o = 0; o < scene.Mapper->GetNumberOfObjects(); ++o)
+  {
+    coarsest += scene.Mapper->GetObjectCoarsestResolution(o) *
+      static_cast<double>(scene.Mapper->GetObjectNumberOfTriangles(o));
+  }
+  const double drawn = static_cast<double>(scene.Renderer->GetObjectTrianglesDrawn());
+  EXPECT_GT(drawn, 3.0 * coarsest);
+  // Half the 40 ms left, at 1 us per triangle, within rounding.
+  EXPECT_GT(drawn, 0.9 * 0.5 * (0.1 - fixed - 1e-6 * coarsest) / 1e-6);
+  EXPECT_LE(scene.Renderer->GetPredictedFrameTime() + margin, 0.1 * (1 + 1e-9));
+}
+
+TEST(TimeCriticalRenderer, NoOptimizationTimeStillUsesTheBudget)
+{
+  Scene scene(SphereGrid(4));
+  scene.PinCosts(1e-6);
+  const double total = static_cast<double>(scene.TotalTriangles());
+  scene.Renderer->SetTargetFrameTime(0.002 + 1e-6 * total / 3.0);
+  scene.Renderer->SetOptimizationTimeLimit(0.0);
+  scene.Window->Render();
+  EXPECT_EQ(scene.Renderer->GetOptimizationIterations(), 0);
+  EXPECT_LE(scene.Renderer->GetPredictedFrameTime(), scene.Renderer->GetTargetFrameTime() * (1 + 1e-9));
+  // A third of the scene, not every object at its coarsest level.
+  EXPECT_GT(static_cast<double>(scene.Renderer->GetObjectTrianglesDrawn()), 0.9 * total / 3.0);
+}
+
 TEST(TimeCriticalRenderer, CalibratesItsCostModel)
 {
   Scene scene(SphereGrid(4));
@@ -539,10 +659,16 @@ TEST(TimeCriticalRenderer, CalibratesItsCostModel)
   EXPECT_TRUE(scene.Renderer->GetCalibrated());
   EXPECT_GT(scene.Renderer->GetTriangleCost(), 0.0);
   EXPECT_LT(scene.Renderer->GetTriangleCost(), 1e-3);
+  const double calibrated = scene.Renderer->GetTriangleCost();
   for (int frame = 0; frame < 5; ++frame)
   {
     scene.Window->Render();
+    // Online refinement stays within half the calibrated triangle cost.
+    EXPECT_GE(scene.Renderer->GetTriangleCost(), 0.5 * calibrated * (1 - 1e-12));
   }
+  // Nothing is free after a fit, not even a pixel or a frame.
+  EXPECT_GT(scene.Renderer->GetPixelCost(), 0.0);
+  EXPECT_GT(scene.Renderer->GetFrameCost(), 0.0);
   EXPECT_GT(scene.Renderer->GetPredictedFrameTime(), 0.0);
   EXPECT_TRUE(std::isfinite(scene.Renderer->GetMeasuredFrameTime()));
   EXPECT_TRUE(scene.Renderer->Calibrate());

@@ -141,6 +141,187 @@ TEST(CostModelCalibrator, BatchFitRecoversCoefficientsDespiteOutliers)
   EXPECT_LT(PredictionError(calibrator, Truth, 99), 0.02);
 }
 
+/**
+ * Frames a time-critical renderer produces when its frame time stops
+ * depending on the triangles: the optimizer holds the time at the target
+ * whatever it draws (what it trades the triangles against is not in the
+ * features), or time it does not model (refinement, uploads, another
+ * process) comes and goes opposite to the triangles. Phase 0: time constant
+ * at 100 ms (2% noise) whatever the triangles (50K to 1M) and pixels; phase
+ * 1: the true model plus an unmodelled cost that is large exactly when the
+ * triangles are few. Both pull the least-squares triangle cost to 0.
+ */
+struct AdversarialSource
+{
+  std::mt19937_64 Rng;
+  std::uniform_real_distribution<double> Unit{ 0.0, 1.0 };
+  std::normal_distribution<double> Noise{ 0.0, 1.0 };
+  explicit AdversarialSource(unsigned seed)
+    : Rng(seed)
+  {
+  }
+  /// Triangle range of the scene and the model whose frames these imitate.
+  static constexpr double MaxTriangles = 1e6;
+  static Features Model() { return { 5e-3, 3e-4, 0.0, 1e-7, 2e-8 }; }
+  Features Next(double& time, int phase)
+  {
+    Features x;
+    const double share = this->Unit(this->Rng); // of the scene's triangles drawn
+    x[FrameCostModel::FeatureFrame] = 1.0;
+    x[FrameCostModel::FeatureDrawCalls] = 1.0;
+    x[FrameCostModel::FeatureObjects] = 529.0;
+    x[FrameCostModel::FeatureTriangles] = (0.05 + 0.95 * share) * MaxTriangles;
+    x[FrameCostModel::FeaturePixels] = 2e4 + this->Unit(this->Rng) * 2.4e5;
+    const double noise = 1.0 + 0.02 * this->Noise(this->Rng);
+    time = phase == 0 ? 0.1 * noise
+                      : (FrameSource::Clean(x, Model()) + 0.12 * (1.0 - share)) * noise;
+    return x;
+  }
+};
+
+/// Start-up calibration on well-spread frames of AdversarialSource's model.
+void CalibrateOnModel(CostModelCalibrator& calibrator)
+{
+  FrameSource source(17);
+  source.OutlierRate = 0.0;
+  std::vector<double> x, t;
+  for (int k = 0; k < 15; ++k)
+  {
+    Features f = source.Next();
+    f[FrameCostModel::FeatureTriangles] = (k % 5) * 0.25 * AdversarialSource::MaxTriangles;
+    x.insert(x.end(), f.begin(), f.end());
+    t.push_back(source.Measure(f, AdversarialSource::Model()));
+  }
+  ASSERT_TRUE(calibrator.Calibrate(x.data(), t.data(), t.size()));
+}
+
+/// The adversarial frames after a good calibration; the smallest triangle cost seen.
+double FeedAdversarialFrames(CostModelCalibrator& calibrator, int phase, unsigned seed)
+{
+  AdversarialSource source(seed);
+  double smallest = calibrator.GetCoefficient(FrameCostModel::FeatureTriangles);
+  for (int k = 0; k < 3000; ++k)
+  {
+    double time = 0.0;
+    const Features x = source.Next(time, phase);
+    calibrator.Update(x.data(), time);
+    smallest = std::min(smallest, calibrator.GetCoefficient(FrameCostModel::FeatureTriangles));
+    Features full = x;
+    full[FrameCostModel::FeatureTriangles] = AdversarialSource::MaxTriangles;
+    EXPECT_GT(calibrator.Predict(full.data()), 0.0);
+  }
+  return smallest;
+}
+
+TEST(CostModelCalibrator, LowerBoundsHoldAgainstAdversarialFrames)
+{
+  const double truth = AdversarialSource::Model()[FrameCostModel::FeatureTriangles];
+  for (int phase = 0; phase < 2; ++phase)
+  {
+    SCOPED_TRACE(phase == 0 ? "constant time" : "unmodelled time opposite to the triangles");
+    // Premise: without bounds these frames do drive the triangle cost to
+    // (nearly) nothing, so the bounded run below can fail.
+    CostModelCalibrator unbounded(D);
+    CalibrateOnModel(unbounded);
+    EXPECT_NEAR(unbounded.GetCoefficient(FrameCostModel::FeatureTriangles), truth, 0.2 * truth);
+    EXPECT_LT(FeedAdversarialFrames(unbounded, phase, 5), 0.1 * truth);
+
+    // Bounded at half the calibrated costs, as vtkTimeCriticalRenderer does.
+    CostModelCalibrator bounded(D);
+    CalibrateOnModel(bounded);
+    Features theta{}, lower{};
+    bounded.GetCoefficients(theta.data());
+    for (std::size_t j = 0; j < D; ++j)
+    {
+      lower[j] = 0.5 * theta[j];
+    }
+    bounded.SetLowerBounds(lower.data());
+    EXPECT_EQ(bounded.GetLowerBound(FrameCostModel::FeatureTriangles),
+      lower[FrameCostModel::FeatureTriangles]);
+    const double smallest = FeedAdversarialFrames(bounded, phase, 5);
+    EXPECT_GE(smallest, lower[FrameCostModel::FeatureTriangles]);
+    bounded.GetCoefficients(theta.data());
+    for (std::size_t j = 0; j < D; ++j)
+    {
+      EXPECT_GE(theta[j], lower[j]) << "coefficient " << j;
+    }
+    // A full-resolution frame is predicted at no less than half its true cost.
+    Features full{};
+    full[FrameCostModel::FeatureFrame] = 1.0;
+    full[FrameCostModel::FeatureTriangles] = AdversarialSource::MaxTriangles;
+    EXPECT_GE(bounded.Predict(full.data()), 0.5 * truth * AdversarialSource::MaxTriangles);
+  }
+}
+
+TEST(CostModelCalibrator, LowerBoundsInBatchFitAndRefit)
+{
+  // Frames whose time ignores the triangles: the batch fit gives them 0, or
+  // exactly the bound when one is set.
+  AdversarialSource source(3);
+  std::vector<double> x, t;
+  for (int k = 0; k < 200; ++k)
+  {
+    double time = 0.0;
+    const Features f = source.Next(time, 0);
+    x.insert(x.end(), f.begin(), f.end());
+    t.push_back(time);
+  }
+  Features theta{}, lower{};
+  ASSERT_TRUE(CostModelCalibrator::FitBatch(x.data(), t.data(), t.size(), D, theta.data()));
+  EXPECT_LT(theta[FrameCostModel::FeatureTriangles], 1e-9);
+  lower[FrameCostModel::FeatureTriangles] = 5e-8;
+  lower[FrameCostModel::FeaturePixels] = 1e-9;
+  ASSERT_TRUE(CostModelCalibrator::FitBatch(x.data(), t.data(), t.size(), D, theta.data(),
+    CostModelCalibrator::Options(), nullptr, lower.data()));
+  EXPECT_NEAR(theta[FrameCostModel::FeatureTriangles], 5e-8, 1e-12);
+  EXPECT_GE(theta[FrameCostModel::FeaturePixels], 1e-9);
+  // The fit still explains the frames: the frame term takes what the bound
+  // forces out of the others.
+  Features mean{};
+  for (std::size_t k = 0; k < t.size(); ++k)
+  {
+    for (std::size_t j = 0; j < D; ++j)
+    {
+      mean[j] += x[k * D + j] / static_cast<double>(t.size());
+    }
+  }
+  EXPECT_NEAR(FrameSource::Clean(mean, theta), 0.1, 0.01);
+
+  // A change of regime (every frame twice as slow) refits within the bounds.
+  CostModelCalibrator calibrator(D);
+  Features floor{};
+  floor[FrameCostModel::FeatureTriangles] = 0.5 * AdversarialSource::Model()[FrameCostModel::FeatureTriangles];
+  floor[FrameCostModel::FeaturePixels] = 0.5 * AdversarialSource::Model()[FrameCostModel::FeaturePixels];
+  calibrator.SetLowerBounds(floor.data());
+  CalibrateOnModel(calibrator);
+  FrameSource frames(23);
+  frames.OutlierRate = 0.0;
+  for (int k = 0; k < 80; ++k)
+  {
+    const Features f = frames.Next();
+    calibrator.Update(f.data(), 2.0 * frames.Measure(f, AdversarialSource::Model()));
+  }
+  EXPECT_GE(calibrator.GetStatistics().Changes, 1);
+  calibrator.GetCoefficients(theta.data());
+  EXPECT_GE(theta[FrameCostModel::FeatureTriangles], floor[FrameCostModel::FeatureTriangles]);
+  EXPECT_GE(theta[FrameCostModel::FeaturePixels], floor[FrameCostModel::FeaturePixels]);
+  EXPECT_LT(PredictionError(calibrator, [] {
+    Features doubled = AdversarialSource::Model();
+    for (double& c : doubled)
+    {
+      c *= 2.0;
+    }
+    return doubled;
+  }(), 7), 0.1);
+  // Negative, NaN and null bounds mean none.
+  const Features bad = { -1.0, std::numeric_limits<double>::quiet_NaN(), 0.0, 0.0, 0.0 };
+  calibrator.SetLowerBounds(bad.data());
+  EXPECT_EQ(calibrator.GetLowerBound(0), 0.0);
+  EXPECT_EQ(calibrator.GetLowerBound(1), 0.0);
+  calibrator.SetLowerBounds(nullptr);
+  EXPECT_EQ(calibrator.GetLowerBound(FrameCostModel::FeatureTriangles), 0.0);
+}
+
 TEST(CostModelCalibrator, OnlineRecoversCoefficientsDespiteOutliers)
 {
   const Features prior = { 1e-2, 1e-3, 0.0, 1e-5, 0.0 }; // wrong by 2-5x

@@ -134,6 +134,53 @@ TEST(FrameCostModel, SanitizesCoefficients)
   EXPECT_EQ(m.GetCoefficients().Pixel, 0.0);
 }
 
+TEST(FrameCostModel, MinimumCoefficientsKeepEveryPredictionPositive)
+{
+  // A fit that drove triangles and pixels to 0 (the collapse the bounds stop).
+  FrameCostModel::Coefficients collapsed;
+  collapsed.Frame = 0.0;
+  collapsed.Triangle = 0.0;
+  collapsed.Pixel = -1.0;
+  FrameCostModel m(collapsed, FrameCostModel::PixelMode::Additive);
+  EXPECT_EQ(m.MaxTime(1e6), 0.0); // premise: without bounds an object is free
+
+  const FrameCostModel::Coefficients physical = FrameCostModel::PhysicalMinimum();
+  EXPECT_GT(physical.Frame, 0.0);
+  EXPECT_GT(physical.Triangle, 0.0);
+  EXPECT_GT(physical.Pixel, 0.0);
+  m.SetMinimumCoefficients(physical);
+  EXPECT_EQ(m.GetCoefficients().Triangle, physical.Triangle); // raised at once
+  EXPECT_EQ(m.GetCoefficients().Pixel, physical.Pixel);
+  m.SetCoefficients(collapsed);
+  EXPECT_EQ(m.GetCoefficients().Triangle, physical.Triangle);
+  EXPECT_GT(m.MaxTime(1.0), 0.0);
+  EXPECT_GT(m.FixedTime(FrameCostModel::FrameLoad(), 0.0), 0.0);
+  const double triangles[] = { 1.0, 5804.0 }, pixels[] = { 0.0, 1e4 }, r[] = { 1e-6, 1.0 };
+  EXPECT_GT(m.PredictFrameTime(FrameCostModel::FrameLoad(), 2, triangles, pixels, r), 0.0);
+
+  // Bounds relative to a calibration: coefficients above them pass unchanged,
+  // those below are raised; bad bounds count as 0.
+  FrameCostModel::Coefficients floor;
+  floor.Triangle = 1e-7;
+  floor.Pixel = std::numeric_limits<double>::quiet_NaN();
+  m.SetMinimumCoefficients(floor);
+  EXPECT_EQ(m.GetMinimumCoefficients().Pixel, 0.0);
+  FrameCostModel::Coefficients fitted;
+  fitted.Triangle = 3e-7;
+  fitted.Pixel = 2e-9;
+  m.SetCoefficients(fitted);
+  EXPECT_EQ(m.GetCoefficients().Triangle, 3e-7);
+  EXPECT_EQ(m.GetCoefficients().Pixel, 2e-9);
+  fitted.Triangle = 1e-12;
+  double w[FrameCostModel::FeatureCount];
+  m.SetCoefficients(fitted);
+  m.GetFeatureWeights(w);
+  EXPECT_EQ(w[FrameCostModel::FeatureTriangles], 1e-7);
+  w[FrameCostModel::FeatureTriangles] = 0.0; // the calibrator's path
+  m.SetFeatureWeights(w);
+  EXPECT_DOUBLE_EQ(m.MaxTime(1000.0), 1e-4);
+}
+
 TEST(FrameCostModel, FeaturesMatchThePrediction)
 {
   FrameCostModel::Coefficients c;

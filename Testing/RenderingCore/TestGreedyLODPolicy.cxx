@@ -99,6 +99,37 @@ TEST(GreedyLODPolicy, InfeasibleAndUnconstrained)
   }
 }
 
+TEST(GreedyLODPolicy, ZeroCostIsNeverDrawnInFull)
+{
+  // As in ActiveSetOptimizer: tmax = 0 is a failed cost model, not a free
+  // object; the object stays at its lowest level, within budget or not.
+  for (double fraction : { 0.3, 2.0 })
+  {
+    PolicyScene scene(30, 1.0, 4);
+    for (std::size_t i = 0; i < 30; i += 3)
+    {
+      scene.Problem.MaxTime[i] = 0.0;
+      scene.Problem.Weight[i] *= 1e3;
+    }
+    scene.Target = scene.FixedTime + fraction * scene.Problem.CostAtFull();
+    GreedyLODPolicy policy;
+    std::vector<double> r(30);
+    policy.Select(scene.Input(), r.data());
+    for (std::size_t i = 0; i < 30; ++i)
+    {
+      if (i % 3 == 0)
+      {
+        EXPECT_EQ(r[i], std::max(scene.Problem.MinResolution[i], policy.GetLevels().front()))
+          << "object " << i << ", budget fraction " << fraction;
+      }
+      else if (fraction > 1.0)
+      {
+        EXPECT_EQ(r[i], 1.0);
+      }
+    }
+  }
+}
+
 TEST(GreedyLODPolicy, IncrementalFromThePreviousFrame)
 {
   PolicyScene scene(1000, 1.0, 12);
