@@ -94,6 +94,7 @@ struct vtkTimeCriticalRenderer::Internals
   timecritical::FrameTimeCorrector StillCorrector;
   double RawPrediction = NaN; // the model's prediction of the pending frame, uncorrected
   bool PendingStill = false;  // the pending frame is a still frame
+  bool PendingCalibrated = false; // the pending frame ran the calibration's hidden renders
   timecritical::DegradationModel Degradation;
   timecritical::ActiveSetPolicy ActiveSet;
   timecritical::FullResolutionPolicy FullResolution;
@@ -700,7 +701,11 @@ void vtkTimeCriticalRenderer::OnWindowEnd()
   in.FramePending = false;
   in.FrameStartValid = false;
   this->MeasuredFrameTime = Seconds(in.FrameStart, Clock::now());
-  if (this->OnlineCalibration)
+  // A frame that calibrated took the hidden renders' time too: the user
+  // waited for it, but it says nothing about the model.
+  const bool calibrated = in.PendingCalibrated;
+  in.PendingCalibrated = false;
+  if (this->OnlineCalibration && !calibrated)
   {
     (in.PendingStill ? in.StillCorrector : in.Corrector)
       .Update(in.RawPrediction, this->MeasuredFrameTime);
@@ -782,6 +787,7 @@ void vtkTimeCriticalRenderer::DeviceRender()
   {
     in.CalibrationRequested = false;
     this->RunCalibration();
+    in.PendingCalibrated = true;
   }
   this->MeasureObjects();
   this->HeuristicsTime = Seconds(heuristicsStart, Clock::now());

@@ -378,6 +378,8 @@ struct FrameRecord
   double Measured = NaN;         ///< wall clock around Render() (+ glFinish), seconds
   double RendererMeasured = NaN; ///< vtkTimeCriticalRenderer::GetMeasuredFrameTime() after it
   double Predicted = NaN;
+  double Fixed = NaN;  ///< t_fixed of the prediction
+  double Margin = NaN; ///< safety margin kept free of the target
   double Optimizer = NaN;
   double Heuristics = NaN;
   int Iterations = 0;
@@ -404,6 +406,11 @@ struct Statistics
   double TrianglesMean = NaN;
   int ReducedFrames = 0; ///< vtkLODProp3D: frames with some prop below its full level
   std::array<long long, 6> LODPropFrames{}; ///< vtkLODProp3D: props drawn per level, all frames
+  /// Over the frames whose full-resolution time ('none', same camera) exceeds
+  /// the target: the frames where a policy must reduce, and where unused
+  /// budget is image quality given away.
+  int HeavyFrames = 0;
+  double HeavyMean = NaN, HeavyCV = NaN, HeavyShareWithin = NaN, HeavyPSNRMedian = NaN;
 };
 
 struct PolicyRun
@@ -420,6 +427,51 @@ struct PolicyRun
   std::vector<double> LODEstimated;
   double LODAllocated = NaN;
 };
+
+/// Frames whose full-resolution time exceeds the target (empty: unknown).
+std::vector<bool> HeavyFrames(const std::vector<FrameRecord>& reference, double target)
+{
+  std::vector<bool> heavy;
+  for (const FrameRecord& f : reference)
+  {
+    heavy.push_back(f.Measured > target);
+  }
+  return heavy;
+}
+
+/// Mean, CV and share within 110% of the target over the heavy frames.
+void ComputeHeavyStatistics(
+  Statistics& s, const std::vector<FrameRecord>& frames, const std::vector<bool>& heavy, double target)
+{
+  std::vector<double> times, psnr;
+  int within = 0;
+  for (size_t i = 0; i < frames.size() && i < heavy.size(); ++i)
+  {
+    if (heavy[i])
+    {
+      times.push_back(frames[i].Measured);
+      within += frames[i].Measured <= 1.1 * target ? 1 : 0;
+      if (std::isfinite(frames[i].PSNR))
+      {
+        psnr.push_back(frames[i].PSNR);
+      }
+    }
+  }
+  s.HeavyFrames = static_cast<int>(times.size());
+  if (times.empty())
+  {
+    return;
+  }
+  s.HeavyMean = Mean(times);
+  double variance = 0.0;
+  for (double t : times)
+  {
+    variance += (t - s.HeavyMean) * (t - s.HeavyMean);
+  }
+  s.HeavyCV = std::sqrt(variance / static_cast<double>(times.size())) / s.HeavyMean;
+  s.HeavyShareWithin = static_cast<double>(within) / static_cast<double>(times.size());
+  s.HeavyPSNRMedian = MedianOf(psnr);
+}
 
 Statistics ComputeStatistics(const std::vector<FrameRecord>& frames, double target)
 {
@@ -527,6 +579,7 @@ public:
   } Noise;
 
   std::vector<Image> Reference;
+  std::vector<bool> Heavy; ///< per frame: full resolution ('none') over the target
   Checks Check;
   double CalibrationSeconds = 0.0;
   double Coefficients[5] = { NaN, NaN, NaN, NaN, NaN }; ///< frame, draw call, triangle, pixel, margin
@@ -818,6 +871,8 @@ PolicyRun Walkthrough::Run(const PolicyInfo& policy)
     {
       record.RendererMeasured = tc->GetMeasuredFrameTime();
       record.Predicted = tc->GetPredictedFrameTime();
+      record.Fixed = tc->GetFixedFrameTime();
+      record.Margin = tc->GetSafetyMargin();
       record.Optimizer = tc->GetOptimizationTime();
       record.Heuristics = tc->GetHeuristicsTime();
       record.Iterations = tc->GetOptimizationIterations();
@@ -924,6 +979,11 @@ PolicyRun Walkthrough::Run(const PolicyInfo& policy)
   run.VertexBufferBuilds =
     static_cast<long long>(this->Mapper->GetVertexBufferBuildCount() - buildsBefore);
   run.Stats = ComputeStatistics(run.Frames, this->Options.Target);
+  if (reference)
+  {
+    this->Heavy = HeavyFrames(run.Frames, this->Options.Target);
+  }
+  ComputeHeavyStatistics(run.Stats, run.Frames, this->Heavy, this->Options.Target);
   if (lod)
   {
     this->Window->SetDesiredUpdateRate(0.0001);
@@ -1002,7 +1062,8 @@ struct Goal
   bool Evaluated = true; ///< false when the run lacks what the goal compares with
 };
 
-std::vector<Goal> EvaluateGoals(const std::vector<PolicyRun>& runs, double target)
+std::vector<Goal> EvaluateGoals(
+  const std::vector<PolicyRun>& runs, double target, const Walkthrough::NoiseFloor& noise)
 {
   std::vector<Goal> goals;
   const PolicyRun* tc = nullptr;
@@ -1018,43 +1079,58 @@ std::vector<Goal> EvaluateGoals(const std::vector<PolicyRun>& runs, double targe
     return goals;
   }
   const Statistics& s = tc->Stats;
-  char buffer[128];
+  char buffer[160];
   std::snprintf(buffer, sizeof(buffer), "%.1f%%", 100.0 * s.ShareWithin);
   goals.push_back({ "frames <= " + Number(1100.0 * target, 4) + " ms", ">= 99%", buffer,
     s.ShareWithin >= 0.99 });
-  std::snprintf(buffer, sizeof(buffer), "%.1f%%", 100.0 * s.CV);
-  goals.push_back({ "frame time CV (stddev/mean)", "<= 5%", buffer, s.CV <= 0.05 });
+  // The budget used where it matters: frames that cannot be drawn in full.
+  if (s.HeavyFrames > 0)
+  {
+    std::snprintf(buffer, sizeof(buffer), "%.1f ms (%d frames)", 1000.0 * s.HeavyMean,
+      s.HeavyFrames);
+    goals.push_back({ "mean frame time, full res. > target", ">= " + Number(900.0 * target, 4) +
+        " ms", buffer, s.HeavyMean >= 0.9 * target });
+    std::snprintf(buffer, sizeof(buffer), "%.1f%% (noise floor %.1f%%)", 100.0 * s.HeavyCV,
+      100.0 * noise.CV);
+    goals.push_back({ "frame time CV, full res. > target", "<= 5% (report)", buffer,
+      s.HeavyCV <= 0.05 });
+  }
+  else
+  {
+    goals.push_back({ "mean frame time, full res. > target", ">= " + Number(900.0 * target, 4) +
+        " ms", "no 'none' run or no such frame", false, false });
+  }
   std::snprintf(buffer, sizeof(buffer), "%.1f%%", 100.0 * s.PredictionError);
   goals.push_back({ "mean |predicted - measured| / measured", "<= 10%", buffer,
     s.PredictionError <= 0.10 });
   std::snprintf(buffer, sizeof(buffer), "max %.3f ms (mean %.3f)", 1000.0 * s.OptimizerMax,
     1000.0 * s.OptimizerMean);
   goals.push_back({ "optimizer time", "<= 1 ms", buffer, s.OptimizerMax <= 0.001 });
-  if (std::isfinite(s.PSNRMean))
+  if (std::isfinite(s.PSNRMedian))
   {
     double bestOther = -std::numeric_limits<double>::infinity();
     std::string bestName = "-";
     for (const auto& run : runs)
     {
-      if (&run != tc && run.Policy->Kind != PolicyKind::None && std::isfinite(run.Stats.PSNRMean) &&
-        run.Stats.PSNRMean > bestOther)
+      if (&run != tc && run.Policy->Kind != PolicyKind::None &&
+        std::isfinite(run.Stats.PSNRMedian) && run.Stats.PSNRMedian > bestOther)
       {
-        bestOther = run.Stats.PSNRMean;
+        bestOther = run.Stats.PSNRMedian;
         bestName = run.Policy->Name;
       }
     }
     if (std::isfinite(bestOther))
     {
-      std::snprintf(buffer, sizeof(buffer), "%.2f dB (next: %s %.2f)", s.PSNRMean,
+      std::snprintf(buffer, sizeof(buffer), "%.2f dB (next: %s %.2f)", s.PSNRMedian,
         bestName.c_str(), bestOther);
-      goals.push_back({ "mean PSNR vs full resolution", "best of all policies", buffer,
-        s.PSNRMean >= bestOther, true });
+      goals.push_back({ "median PSNR vs full resolution", "above every peer", buffer,
+        s.PSNRMedian > bestOther, true });
     }
     else
     {
-      std::snprintf(buffer, sizeof(buffer), "%.2f dB (no other policy run)", s.PSNRMean);
+      std::snprintf(buffer, sizeof(buffer), "%.2f dB (no other policy run)", s.PSNRMedian);
       goals.push_back(
-        { "mean PSNR vs full resolution", "best of all policies", buffer, false, false });
+        { "median PSNR vs full resolution", "above every peer", buffer, false, false });
     }
   }
   return goals;
@@ -1106,6 +1182,19 @@ void PrintTable(const std::vector<PolicyRun>& runs, const std::vector<Goal>& goa
               "images counted as %.0f dB, which lifts the mean of policies that draw some frames "
               "in full; optimizer times in ms)\n",
     1000.0 * target, PSNRCap);
+  if (!runs.empty() && runs.front().Stats.HeavyFrames > 0)
+  {
+    std::printf("\nframes whose full-resolution time exceeds the target (%d of %d):\n%-18s %8s "
+                "%7s %8s %9s\n",
+      runs.front().Stats.HeavyFrames, runs.front().Stats.Frames, "policy", "mean ms", "CV",
+      "<=110ms", "PSNR med");
+    for (const auto& run : runs)
+    {
+      const Statistics& s = run.Stats;
+      std::printf("%-18s %8.1f %6.1f%% %7.1f%% %9.2f\n", run.Policy->Label, 1000.0 * s.HeavyMean,
+        100.0 * s.HeavyCV, 100.0 * s.HeavyShareWithin, s.HeavyPSNRMedian);
+    }
+  }
   if (!goals.empty())
   {
     std::printf("\nTimeCritical goals\n%-40s %-22s %-32s %s\n", "goal", "required", "measured",
@@ -1215,7 +1304,11 @@ void WriteJson(const Settings& settings, const ObjectMesh& object, const Scene& 
         << ", \"psnr_min\": " << Number(s.PSNRMin)
         << ", \"identical_frames\": " << s.IdenticalFrames
         << ", \"triangles_mean\": " << Number(s.TrianglesMean, 9)
-        << ", \"frames_with_reduced_lod\": " << s.ReducedFrames << "},\n";
+        << ", \"frames_with_reduced_lod\": " << s.ReducedFrames
+        << ", \"heavy_frames\": " << s.HeavyFrames << ", \"heavy_mean\": " << Number(s.HeavyMean)
+        << ", \"heavy_cv\": " << Number(s.HeavyCV)
+        << ", \"heavy_share_within_110_percent\": " << Number(s.HeavyShareWithin)
+        << ", \"heavy_psnr_median\": " << Number(s.HeavyPSNRMedian) << "},\n";
     const auto& f = run.Frames;
     out << "     \"frames\": {\n";
     out << "      \"measured\": " << Array(f, [](const FrameRecord& r) { return r.Measured; }) << ",\n";
@@ -1223,6 +1316,8 @@ void WriteJson(const Settings& settings, const ObjectMesh& object, const Scene& 
         << Array(f, [](const FrameRecord& r) { return r.RendererMeasured; }) << ",\n";
     out << "      \"predicted\": " << Array(f, [](const FrameRecord& r) { return r.Predicted; })
         << ",\n";
+    out << "      \"fixed\": " << Array(f, [](const FrameRecord& r) { return r.Fixed; }) << ",\n";
+    out << "      \"margin\": " << Array(f, [](const FrameRecord& r) { return r.Margin; }) << ",\n";
     out << "      \"optimizer\": " << Array(f, [](const FrameRecord& r) { return r.Optimizer; })
         << ",\n";
     out << "      \"heuristics\": " << Array(f, [](const FrameRecord& r) { return r.Heuristics; })
@@ -1323,7 +1418,7 @@ int main(int argc, char* argv[])
       load[1] = sample[0];
     }
 
-    const std::vector<Goal> goals = EvaluateGoals(runs, settings.Target);
+    const std::vector<Goal> goals = EvaluateGoals(runs, settings.Target, walk.Noise);
     std::printf("WalkthroughBenchmark: %zu objects, %lld triangles, %d frames, target %.0f ms%s\n",
       scene.Objects.size(), static_cast<long long>(scene.Triangles), settings.Frames,
       1000.0 * settings.Target, object.Substitute ? " (SUBSTITUTE MESH: cow.obj not found)" : "");
