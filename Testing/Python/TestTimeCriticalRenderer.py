@@ -99,6 +99,25 @@ class TimeCriticalRendererTest(unittest.TestCase):
         r.StillRender()
         self.assertTrue(r.GetLastRenderWasStill())
         self.assertEqual(r.GetObjectTrianglesDrawn(), self.total)
+        self.assertEqual(r.GetLastTargetFrameTime(), math.inf)
+
+        # With the interactors' rates, the target is 1 / DesiredUpdateRate;
+        # GetTargetFrameTime() stays the setting.
+        r.UseDesiredUpdateRateOn()
+        self.window.SetDesiredUpdateRate(30.0)
+        self.assertAlmostEqual(r.GetEffectiveTargetFrameTime(), 1.0 / 30.0, delta=1e-15)
+        self.window.Render()
+        self.assertAlmostEqual(r.GetLastTargetFrameTime(), 1.0 / 30.0, delta=1e-15)
+        self.assertNotEqual(r.GetTargetFrameTime(), r.GetEffectiveTargetFrameTime())
+        self.window.SetDesiredUpdateRate(0.0001)
+        self.assertEqual(r.GetEffectiveTargetFrameTime(), math.inf)
+
+        # No optimization time: a closed-form allocation, not the coarsest one.
+        r.UseDesiredUpdateRateOff()
+        r.SetOptimizationTimeLimit(0.0)
+        self.window.Render()
+        self.assertEqual(r.GetOptimizationIterations(), 0)
+        self.assertGreater(r.GetObjectTrianglesDrawn(), 0.2 * self.total)
 
     def test_bad_settings_raise_errors_not_crashes(self):
         errors = []
@@ -115,6 +134,8 @@ class TimeCriticalRendererTest(unittest.TestCase):
         self.assertTrue(self.renderer.GetCalibrated())
         cost = self.renderer.GetTriangleCost()
         self.assertTrue(math.isfinite(cost) and 0.0 < cost < 1e-3)
+        self.assertGreater(self.renderer.GetCalibrationRenders(), 0)
+        self.assertGreater(self.renderer.GetCalibrationTime(), 0.0)
 
 
 if __name__ == "__main__":
