@@ -16,8 +16,9 @@
  * its prediction, target and triangles. Reported: the cold start (first
  * render, of which calibration), interactive frames against the target and
  * the stalls (frames over twice the target), the still frames' predictions,
- * and whether each image at rest equals full resolution (a plain vtkRenderer
- * drawing every object in full, same camera, compared pixel for pixel).
+ * and whether each image at rest equals full resolution (after the session,
+ * a plain vtkRenderer drawing every object in full with each rest camera,
+ * compared pixel for pixel).
  *
  * Exit status 1 on errors, on a hidden calibration render after the
  * start-up frame, and on an image at rest that differs from full
@@ -65,7 +66,9 @@ struct Settings
   double Rate = 15.0; ///< the interactor's DesiredUpdateRate (VTK's default)
   int Drags = 6;
   int Moves = 40;
+  bool RestCheck = true;
   unsigned Seed = 20001;
+
   std::string Output = "interactive-output";
   std::string Json;
   std::string DataDirectory = TIMECRITICAL_SHARED_DATA_DIR;
@@ -79,6 +82,7 @@ void PrintUsage()
        "  --rate FPS    the interactor's DesiredUpdateRate (default 15: target 67 ms)\n"
        "  --drags N     drags (rotate, pan, zoom in turn; default 6)\n"
        "  --moves N     mouse moves per drag (default 40)\n"
+       "  --no-rest-check  do not compare the images at rest with full resolution\n"
        "  --quick       36 objects, 2 drags of 10 moves (smoke test)\n"
        "  --output DIR  output folder (default ./interactive-output)\n"
        "  --json FILE   JSON file (default DIR/interactive.json)\n"
@@ -118,6 +122,10 @@ Settings ParseArguments(int argc, char* argv[])
     else if (arg == "--quick")
     {
       settings.Quick = true;
+    }
+    else if (arg == "--no-rest-check")
+    {
+      settings.RestCheck = false;
     }
     else if (arg == "--objects")
     {
@@ -189,6 +197,11 @@ struct FrameRecord
   double Target = NaN; ///< planned target (NaN for a still frame)
   double Triangles = 0.0;
   int CalibrationRenders = 0; ///< hidden calibration renders so far
+  double IndexUpdate = NaN;   ///< the mapper's CPU seconds updating index data
+  double IndexBytes = 0.0;    ///< bytes of index data uploaded
+  double Padding = 0.0;       ///< degenerate primitives drawn (slot slack)
+  double Relayouts = 0.0;     ///< index buffer layouts so far
+  double Heuristics = NaN, Optimizer = NaN; ///< the renderer's CPU seconds
 };
 
 struct RestCheck
@@ -219,7 +232,10 @@ public:
   void Setup();
   void StartUp();
   void Drag(int index);
-  void CheckRest(int index);
+  /// Keeps the image at rest and its camera, for CheckRest().
+  void KeepRest(int index);
+  void Repaint(int index) { this->Record(index, this->TimedRepaint()); }
+  void CheckRest();
 
   std::vector<FrameRecord> Frames;
   std::vector<RestCheck> Rest;
@@ -245,6 +261,13 @@ private:
   vtkNew<vtkActor> Actor;
   vtkNew<vtkCallbackCommand> Counting;
   RenderCounter Renders;
+  struct RestView
+  {
+    int Drag = 0;
+    Image Pixels;
+    vtkSmartPointer<vtkCamera> Camera = vtkSmartPointer<vtkCamera>::New();
+  };
+  std::vector<RestView> RestViews;
 };
 
 void Session::Setup()
@@ -301,6 +324,12 @@ void Session::Record(int drag, double wall)
   record.Target = std::isfinite(target) ? target : NaN;
   record.Triangles = static_cast<double>(this->Renderer->GetTrianglesDrawn());
   record.CalibrationRenders = this->Renderer->GetCalibrationRenders();
+  record.IndexUpdate = this->Mapper->GetIndexUpdateTime();
+  record.IndexBytes = static_cast<double>(this->Mapper->GetIndexBytesUploaded());
+  record.Padding = static_cast<double>(this->Mapper->GetNumberOfPaddingPrimitives());
+  record.Relayouts = static_cast<double>(this->Mapper->GetIndexBufferRelayoutCount());
+  record.Heuristics = this->Renderer->GetHeuristicsTime();
+  record.Optimizer = this->Renderer->GetOptimizationTime();
   this->Frames.push_back(record);
 }
 
@@ -386,42 +415,52 @@ void Session::Drag(int index)
   }
 }
 
-void Session::CheckRest(int index)
+void Session::KeepRest(int index)
 {
-  RestCheck check;
-  check.Drag = index;
   if (!this->Renderer->GetLastRenderWasStill())
   {
     throw std::runtime_error("the frame after a release was not a still frame");
   }
-  Image atRest = Capture(this->Window, true);
-  // Full resolution drawn independently of the time-critical renderer: a
-  // plain vtkRenderer, the same actor and camera, every object in full.
+  RestView view;
+  view.Drag = index;
+  view.Pixels = Capture(this->Window, true);
+  view.Camera->DeepCopy(this->Renderer->GetActiveCamera());
+  this->RestViews.push_back(std::move(view));
+}
+
+void Session::CheckRest()
+{
+  // After the session (rendering something else in between would disturb the
+  // frame times): full resolution drawn independently of the time-critical
+  // renderer, a plain vtkRenderer with the same actor and each rest camera,
+  // every object in full, compared pixel for pixel.
   vtkNew<vtkRenderer> plain;
   plain->AddActor(this->Actor);
-  plain->SetActiveCamera(this->Renderer->GetActiveCamera());
   SetBackground(plain);
-  // The lights of the time-critical renderer's frame: VTK's automatic headlight.
   this->Window->RemoveRenderer(this->Renderer);
   this->Window->AddRenderer(plain);
   this->Mapper->SetResolution(1.0);
-  this->Window->Render();
-  this->Window->WaitForCompletion();
-  Image full = Capture(this->Window, true);
+  for (RestView& view : this->RestViews)
+  {
+    plain->GetActiveCamera()->DeepCopy(view.Camera);
+    this->Window->Render();
+    this->Window->WaitForCompletion();
+    Image full = Capture(this->Window, true);
+    const Comparison c = Compare(view.Pixels, full);
+    RestCheck check;
+    check.Drag = view.Drag;
+    check.Identical = c.Identical;
+    check.PSNR = c.PSNR;
+    this->Rest.push_back(check);
+    if (view.Drag == 0 || !c.Identical)
+    {
+      const std::filesystem::path folder(this->Options.Output);
+      WritePNG(view.Pixels, folder / ("rest_" + std::to_string(view.Drag) + ".png"));
+      WritePNG(full, folder / ("rest_" + std::to_string(view.Drag) + "_full.png"));
+    }
+  }
   this->Window->RemoveRenderer(plain);
   this->Window->AddRenderer(this->Renderer);
-  const Comparison c = Compare(atRest, full);
-  check.Identical = c.Identical;
-  check.PSNR = c.PSNR;
-  if (index == 0 || !c.Identical)
-  {
-    const std::filesystem::path folder(this->Options.Output);
-    WritePNG(atRest, folder / ("rest_" + std::to_string(index) + ".png"));
-    WritePNG(full, folder / ("rest_" + std::to_string(index) + "_full.png"));
-  }
-  this->Rest.push_back(check);
-  // The user's view again (a repaint after the comparison's frame).
-  this->Record(index, this->TimedRepaint());
 }
 
 struct Summary
@@ -549,6 +588,18 @@ void WriteJson(const Settings& settings, const Session& session, const Summary& 
   out << "    \"target\": " << Array(f, [](const FrameRecord& r) { return r.Target; }) << ",\n";
   out << "    \"triangles\": " << Array(f, [](const FrameRecord& r) { return r.Triangles; }, 10)
       << ",\n";
+  out << "    \"index_update\": " << Array(f, [](const FrameRecord& r) { return r.IndexUpdate; })
+      << ",\n";
+  out << "    \"index_bytes\": " << Array(f, [](const FrameRecord& r) { return r.IndexBytes; }, 12)
+      << ",\n";
+  out << "    \"padding\": " << Array(f, [](const FrameRecord& r) { return r.Padding; }, 12)
+      << ",\n";
+  out << "    \"relayouts\": " << Array(f, [](const FrameRecord& r) { return r.Relayouts; })
+      << ",\n";
+  out << "    \"heuristics\": " << Array(f, [](const FrameRecord& r) { return r.Heuristics; })
+      << ",\n";
+  out << "    \"optimizer\": " << Array(f, [](const FrameRecord& r) { return r.Optimizer; })
+      << ",\n";
   out << "    \"calibration_renders\": "
       << Array(f, [](const FrameRecord& r) { return r.CalibrationRenders; }) << "\n";
   out << "  }\n}\n";
@@ -585,9 +636,14 @@ int main(int argc, char* argv[])
     for (int d = 0; d < settings.Drags; ++d)
     {
       session.Drag(d);
-      session.CheckRest(d);
+      if (settings.RestCheck)
+      {
+        session.KeepRest(d);
+      }
+      session.Repaint(d); // a still frame more, as an expose at rest gives
       std::cerr << "  drag " << d + 1 << "/" << settings.Drags << " done\n";
     }
+    session.CheckRest();
     if (getloadavg(sample, 3) > 0)
     {
       load[1] = sample[0];
