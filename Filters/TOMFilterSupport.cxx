@@ -15,6 +15,7 @@
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkPolyDataValidator.h"
 #include "vtkSetGet.h"
 #include "vtkTriangleFilter.h"
 #include "vtkTypeInt64Array.h"
@@ -23,36 +24,6 @@
 
 namespace timecritical
 {
-namespace
-{
-// Reports the first cell of `cells` (numbered from `firstCell`) that refers to
-// a point outside [0, numberOfPoints); VTK's cleaning filters would read out
-// of bounds on such cells.
-bool CheckPointIds(vtkAlgorithm* filter, vtkCellArray* cells, vtkIdType firstCell,
-  vtkIdType numberOfPoints)
-{
-  auto it = vtk::TakeSmartPointer(cells->NewIterator());
-  vtkIdType cellId = firstCell;
-  for (it->GoToFirstCell(); !it->IsDoneWithTraversal(); it->GoToNextCell(), ++cellId)
-  {
-    vtkIdType size;
-    const vtkIdType* ids;
-    it->GetCurrentCell(size, ids);
-    for (vtkIdType k = 0; k < size; ++k)
-    {
-      if (ids[k] < 0 || ids[k] >= numberOfPoints)
-      {
-        vtkErrorWithObjectMacro(filter, "Cell " << cellId << " refers to point " << ids[k]
-                                                << ", but the input has " << numberOfPoints
-                                                << " points.");
-        return false;
-      }
-    }
-  }
-  return true;
-}
-}
-
 SurfaceStatus PrepareSurface(vtkAlgorithm* filter, vtkPolyData* input, PreparedSurface& surface)
 {
   surface = PreparedSurface();
@@ -70,17 +41,11 @@ SurfaceStatus PrepareSurface(vtkAlgorithm* filter, vtkPolyData* input, PreparedS
   }
   const vtkIdType numberOfInputPoints = input->GetNumberOfPoints();
   const vtkIdType firstPoly = input->GetNumberOfVerts() + input->GetNumberOfLines();
-  if (!CheckPointIds(filter, input->GetPolys(), firstPoly, numberOfInputPoints) ||
-    !CheckPointIds(
-      filter, input->GetStrips(), firstPoly + input->GetNumberOfPolys(), numberOfInputPoints))
+  // VTK's cleaning filters would read out of bounds on bad point ids.
+  const std::string problem = vtkPolyDataValidator::Check(input);
+  if (!problem.empty())
   {
-    return SurfaceStatus::Failed;
-  }
-  const vtkIdType badPoint = FirstNonFinitePoint(input->GetPoints());
-  if (badPoint >= 0)
-  {
-    vtkErrorWithObjectMacro(
-      filter, "Point " << badPoint << " has a non-finite (NaN or infinite) coordinate.");
+    vtkErrorWithObjectMacro(filter, "Bad input: " << problem << ".");
     return SurfaceStatus::Failed;
   }
   const vtkIdType nonSurfaceCells = firstPoly;
@@ -257,27 +222,6 @@ bool SetClampedSetting(vtkObject* object, const char* name, double value, double
   }
   member = clamped;
   return true;
-}
-
-vtkIdType FirstNonFinitePoint(vtkPoints* points)
-{
-  if (!points)
-  {
-    return -1;
-  }
-  vtkDataArray* data = points->GetData();
-  const vtkIdType n = points->GetNumberOfPoints();
-  for (vtkIdType i = 0; i < n; ++i)
-  {
-    for (int c = 0; c < 3; ++c)
-    {
-      if (!std::isfinite(data->GetComponent(i, c)))
-      {
-        return i;
-      }
-    }
-  }
-  return -1;
 }
 
 bool IsEmptyPiece(vtkPolyData* data)

@@ -18,7 +18,6 @@
 
 class vtkAlgorithm;
 class vtkObject;
-class vtkPoints;
 class vtkPolyData;
 
 namespace timecritical
@@ -91,9 +90,6 @@ bool SetClampedSetting(vtkObject* object, const char* name, double value, double
 
 /// Whether a VTK data type (VTK_INT, ...) holds integers; index arrays must.
 bool IsIntegerType(int type);
-
-/// Id of the first point with a NaN or infinite coordinate, or -1 (also for null points).
-vtkIdType FirstNonFinitePoint(vtkPoints* points);
 
 /**
  * Whether `data` is an empty piece (null, or no points and no cells): what a

@@ -14,6 +14,7 @@
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
+#include "vtkPolyDataValidator.h"
 #include "vtkTypeUInt32Array.h"
 
 #include <cmath>
@@ -109,12 +110,10 @@ bool vtkTOMFieldData::Read(vtkPolyData* data)
   }
   // Coordinates are data too: a NaN or infinite point would travel into every
   // extracted mesh and into the renderer's bounds.
-  const vtkIdType badPoint = timecritical::FirstNonFinitePoint(data->GetPoints());
-  if (badPoint >= 0)
+  const std::string badPoint = vtkPolyDataValidator::CheckCoordinates(data->GetPoints());
+  if (!badPoint.empty())
   {
-    std::ostringstream msg;
-    msg << "point " << badPoint << " has a non-finite (NaN or infinite) coordinate";
-    return fail(msg.str());
+    return fail(badPoint);
   }
   if (data->GetNumberOfVerts() || data->GetNumberOfLines() || data->GetNumberOfStrips())
   {

@@ -42,6 +42,7 @@
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkPolyDataValidator.h"
 #include "vtkProperty.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
@@ -542,6 +543,14 @@ void vtkMultiresolutionPolyDataMapper::ReadObjects(vtkDataObject* input)
     {
       vtkErrorMacro("More than 2^32 points in all leaves; the rest are not drawn.");
       break;
+    }
+    // Bad point ids would make VTK's bounds, the index buffers and the vertex
+    // buffer builder read out of bounds; NaN coordinates would poison bounds and culling.
+    const std::string problem = vtkPolyDataValidator::Check(poly);
+    if (!problem.empty())
+    {
+      vtkErrorMacro("Block " << leaf.second << " is not drawn: " << problem << ".");
+      continue;
     }
     Internals::Object object;
     object.FlatIndex = leaf.second;

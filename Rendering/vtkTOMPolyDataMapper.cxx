@@ -7,12 +7,15 @@
 #include "vtkTOMFieldData.h"
 
 #include "vtkActor.h"
+#include "vtkMath.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLIndexBufferObject.h"
 #include "vtkPolyData.h"
+#include "vtkPolyDataValidator.h"
 #include "vtkProperty.h"
 
+#include <string>
 #include <vector>
 
 struct vtkTOMPolyDataMapper::Internals
@@ -30,6 +33,10 @@ struct vtkTOMPolyDataMapper::Internals
   double UploadedResolution = -1.0;
   int UploadedRepresentation = -1;
   bool OnlyIndicesChanged = false;
+  // The input last checked by vtkPolyDataValidator, and its problem ("" when none).
+  vtkPolyData* CheckedData = nullptr;
+  vtkMTimeType CheckedTime = 0;
+  std::string InputProblem;
 };
 
 vtkStandardNewMacro(vtkTOMPolyDataMapper);
@@ -44,6 +51,50 @@ vtkTOMPolyDataMapper::~vtkTOMPolyDataMapper() = default;
 bool vtkTOMPolyDataMapper::GetInputIsTOM() const
 {
   return this->Internal->Valid;
+}
+
+bool vtkTOMPolyDataMapper::CheckInput()
+{
+  // VTK's bounds and buffer builders trust the connectivity (a negative id
+  // corrupts the heap in vtkPolyData::GetCellsBounds).
+  Internals& in = *this->Internal;
+  vtkPolyData* input = this->GetInput();
+  if (!input)
+  {
+    return true; // the superclass reports a missing input
+  }
+  if (input != in.CheckedData || input->GetMTime() != in.CheckedTime)
+  {
+    in.CheckedData = input;
+    in.CheckedTime = input->GetMTime();
+    in.InputProblem = vtkPolyDataValidator::Check(input);
+    if (!in.InputProblem.empty())
+    {
+      vtkErrorMacro("Input is not drawn: " << in.InputProblem << ".");
+    }
+  }
+  return in.InputProblem.empty();
+}
+
+void vtkTOMPolyDataMapper::ComputeBounds()
+{
+  if (!this->CheckInput())
+  {
+    vtkMath::UninitializeBounds(this->Bounds);
+    return;
+  }
+  this->Superclass::ComputeBounds();
+}
+
+void vtkTOMPolyDataMapper::RenderPiece(vtkRenderer* ren, vtkActor* act)
+{
+  if (!this->CheckInput())
+  {
+    this->RenderedTriangles = 0;
+    this->RenderedVertices = 0;
+    return;
+  }
+  this->Superclass::RenderPiece(ren, act);
 }
 
 bool vtkTOMPolyDataMapper::GetNeedToRebuildBufferObjects(vtkRenderer* ren, vtkActor* act)

@@ -47,6 +47,11 @@ protected:
   vtkTOMPolyDataMapper();
   ~vtkTOMPolyDataMapper() override;
 
+  ///@{
+  /// Input with bad point ids or coordinates: an error, no bounds, nothing drawn.
+  void RenderPiece(vtkRenderer* ren, vtkActor* act) override;
+  void ComputeBounds() override;
+  ///@}
   bool GetNeedToRebuildBufferObjects(vtkRenderer* ren, vtkActor* act) override;
   void BuildBufferObjects(vtkRenderer* ren, vtkActor* act) override;
   void BuildIBO(vtkRenderer* ren, vtkActor* act, vtkPolyData* poly) override;
@@ -56,6 +61,9 @@ protected:
   vtkIdType RenderedVertices = 0;
 
 private:
+  /// Checks the input once per version (vtkPolyDataValidator); false, with one error, when bad.
+  bool CheckInput();
+
   vtkTOMPolyDataMapper(const vtkTOMPolyDataMapper&) = delete;
   void operator=(const vtkTOMPolyDataMapper&) = delete;
 

@@ -140,7 +140,7 @@ TEST(vtkMergeTreeBuilder, NaNCoordinateIsAnError)
   vtkNew<vtkMergeTreeBuilder> builder;
   MessageLog log(builder);
   auto out = BuildTree(input, builder);
-  EXPECT_TRUE(log.ErrorContains("Point 5 has a non-finite")) << log.AllErrors();
+  EXPECT_TRUE(log.ErrorContains("point 5 has a non-finite")) << log.AllErrors();
   EXPECT_EQ(out->GetNumberOfPoints(), 0);
 }
 
@@ -167,7 +167,7 @@ TEST(vtkMergeTreeBuilder, OutOfRangePointIdIsAnError)
     vtkNew<vtkMergeTreeBuilder> builder;
     MessageLog log(builder);
     auto out = BuildTree(input, builder);
-    EXPECT_TRUE(log.ErrorContains("Cell 3 refers to point " + std::to_string(bad)))
+    EXPECT_TRUE(log.ErrorContains("cell 3 refers to point " + std::to_string(bad)))
       << log.AllErrors();
     EXPECT_EQ(out->GetNumberOfPoints(), 0);
 
@@ -175,7 +175,7 @@ TEST(vtkMergeTreeBuilder, OutOfRangePointIdIsAnError)
     MessageLog tomLog(tomBuilder);
     tomBuilder->SetInputData(input);
     tomBuilder->Update();
-    EXPECT_TRUE(tomLog.ErrorContains("Cell 3 refers to point " + std::to_string(bad)))
+    EXPECT_TRUE(tomLog.ErrorContains("cell 3 refers to point " + std::to_string(bad)))
       << tomLog.AllErrors();
   }
 }

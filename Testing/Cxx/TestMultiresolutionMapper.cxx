@@ -45,6 +45,7 @@
 #include "vtkRenderer.h"
 #include "vtkSmartPointer.h"
 #include "vtkSphereSource.h"
+#include "vtkTestErrorObserver.h"
 
 #include <gtest/gtest.h>
 
@@ -524,6 +525,72 @@ TEST(MultiresolutionMapper, NonTOMLeafRendersAtFullResolutionWithOneWarning)
   scene.Render();
   EXPECT_EQ(warnings.Count, 1);
   EXPECT_DOUBLE_EQ(mapper->GetObjectResolution(0), 0.1); // kept across the re-read
+}
+
+TEST(MultiresolutionMapper, LeavesWithBadPointIdsOrCoordinatesAreErrorsNotCrashes)
+{
+  // Negative ids once crashed (double free) in the bounds of the leaf and
+  // ids past the end were drawn from outside the vertex buffer. Each bad leaf
+  // is an error naming the block; the good leaves still draw.
+  auto badLeaf = [](vtkIdType id, double coordinate) {
+    vtkNew<vtkPoints> points;
+    points->InsertNextPoint(2.0, 0.0, 0.0);
+    points->InsertNextPoint(3.0, 0.0, 0.0);
+    points->InsertNextPoint(2.0, coordinate, 0.0);
+    vtkNew<vtkCellArray> polys;
+    const vtkIdType ids[3] = { 0, 1, id };
+    polys->InsertNextCell(3, ids);
+    auto leaf = vtkSmartPointer<vtkPolyData>::New();
+    leaf->SetPoints(points);
+    leaf->SetPolys(polys);
+    return leaf;
+  };
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  struct Case
+  {
+    vtkSmartPointer<vtkPolyData> Leaf;
+    std::string Message;
+  };
+  const std::vector<Case> cases = { { badLeaf(-5, 1.0), "cell 0 refers to point -5" },
+    { badLeaf(3, 1.0), "cell 0 refers to point 3" },
+    { badLeaf(100000, 1.0), "cell 0 refers to point 100000" },
+    { badLeaf(2, nan), "point 2 has a non-finite" },
+    { badLeaf(2, std::numeric_limits<double>::infinity()), "point 2 has a non-finite" } };
+  for (const Case& c : cases)
+  {
+    vtkNew<vtkMultiBlockDataSet> blocks;
+    blocks->SetNumberOfBlocks(2);
+    blocks->SetBlock(0, MakeTOM(0.5, 30, 20));
+    blocks->SetBlock(1, c.Leaf);
+    vtkNew<vtkMultiresolutionPolyDataMapper> mapper;
+    vtkNew<vtkTest::ErrorObserver> errors;
+    mapper->AddObserver(vtkCommand::ErrorEvent, errors);
+    mapper->SetInputDataObject(blocks);
+    Scene scene(mapper);
+    scene.Render();
+    scene.Render();
+    ASSERT_TRUE(errors->GetError()) << c.Message;
+    EXPECT_NE(errors->GetErrorMessage().find("Block 2 is not drawn: " + c.Message),
+      std::string::npos)
+      << errors->GetErrorMessage();
+    ASSERT_EQ(mapper->GetNumberOfObjects(), 1) << c.Message;
+    EXPECT_EQ(mapper->GetObjectRenderedTriangles(0), mapper->GetObjectNumberOfTriangles(0));
+    EXPECT_GT(scene.CountForeground(), 0);
+  }
+
+  // vtkTOMPolyDataMapper: the same check, nothing drawn.
+  vtkNew<vtkTOMPolyDataMapper> single;
+  vtkNew<vtkTest::ErrorObserver> errors;
+  single->AddObserver(vtkCommand::ErrorEvent, errors);
+  single->SetInputData(badLeaf(-1, 1.0));
+  Scene scene(single);
+  scene.Render();
+  ASSERT_TRUE(errors->GetError());
+  EXPECT_NE(errors->GetErrorMessage().find("Input is not drawn: cell 0 refers to point -1"),
+    std::string::npos)
+    << errors->GetErrorMessage();
+  EXPECT_EQ(single->GetRenderedTriangles(), 0);
+  EXPECT_EQ(scene.CountForeground(), 0);
 }
 
 TEST(MultiresolutionMapper, PolyDataAndPartitionedInput)

@@ -142,7 +142,7 @@ TEST(vtkTOMBuilder, NaNCoordinateIsAnError)
   vtkNew<vtkTOMBuilder> builder;
   MessageLog log(builder);
   auto out = Build(input, builder);
-  EXPECT_TRUE(log.ErrorContains("Point 5 has a non-finite"));
+  EXPECT_TRUE(log.ErrorContains("point 5 has a non-finite"));
   EXPECT_EQ(out->GetNumberOfPoints(), 0);
 }
 

@@ -714,12 +714,12 @@ class BadInput(unittest.TestCase):
     def test_nan_point(self):
         points, polys = grid_surface()
         points[17] = (float("nan"), 0.0, 0.0)
-        self.assert_build_fails(polydata(points, polys), "Point 17", "non-finite")
+        self.assert_build_fails(polydata(points, polys), "point 17", "non-finite")
 
     def test_infinite_point(self):
         points, polys = grid_surface()
         points[3] = (0.0, float("inf"), 0.0)
-        self.assert_build_fails(polydata(points, polys), "Point 3", "non-finite")
+        self.assert_build_fails(polydata(points, polys), "point 3", "non-finite")
 
     def test_only_degenerate_triangles(self):
         self.assert_build_fails(polydata([(0, 0, 0), (1, 0, 0)], polys=[(0, 1, 1), (0, 0, 1)]))
