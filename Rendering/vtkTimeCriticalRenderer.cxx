@@ -67,12 +67,15 @@ timecritical::FrameCostModel::Coefficients DefaultCoefficients()
 /// Typical magnitude of each feature, so the calibrator works on scaled values.
 const double FeatureScales[FeatureCount] = { 1.0, 10.0, 500.0, 1e5, 1e6 };
 
-/// Online refinement may lower a coefficient to this share of the value a
-/// calibration measured (or the user set), no further: frames fitted in the
-/// loop cannot tell triangles from fill when the optimizer trades one for the
-/// other, and a triangle cost that drifts to 0 draws every object in full.
+/// Online refinement may lower the triangle cost to this share of the value
+/// a calibration measured (or the user set), no further: frames fitted in
+/// the loop need not depend on the triangles (the optimizer holds the time
+/// at the target whatever it draws), and a triangle cost that drifts to 0
+/// draws every object in full. The other coefficients only have their
+/// physical floors: a calibration that overestimates the fill must stay
+/// correctable, and too low a fill cost cannot draw more than the budget.
 /// Costs above the calibration are never bounded (that side only coarsens).
-constexpr double CoefficientFloorShare = 0.5;
+constexpr double TriangleFloorShare = 0.5;
 
 /// Share of the time left after the fixed part and the objects' minimum that
 /// the safety margin may take: the rest always goes to the objects, so a
@@ -216,12 +219,8 @@ struct vtkTimeCriticalRenderer::Internals
     timecritical::FrameCostModel::Coefficients floor = physical;
     if (measured)
     {
-      const auto& c = this->Model.GetCoefficients();
-      floor.Frame = std::max(physical.Frame, CoefficientFloorShare * c.Frame);
-      floor.DrawCall = std::max(physical.DrawCall, CoefficientFloorShare * c.DrawCall);
-      floor.Object = std::max(physical.Object, CoefficientFloorShare * c.Object);
-      floor.Triangle = std::max(physical.Triangle, CoefficientFloorShare * c.Triangle);
-      floor.Pixel = std::max(physical.Pixel, CoefficientFloorShare * c.Pixel);
+      floor.Triangle =
+        std::max(physical.Triangle, TriangleFloorShare * this->Model.GetCoefficients().Triangle);
     }
     this->ApplyFloors(floor);
   }
@@ -402,8 +401,8 @@ void vtkTimeCriticalRenderer::SetCostCoefficients(
   c.Triangle = triangle;
   c.Pixel = pixel;
   // Used as given (a zero pixel cost too: tests pin coefficients); they are
-  // trusted like a calibration, so online refinement may lower them to
-  // CoefficientFloorShare of these, and never below the physical minimum.
+  // trusted like a calibration, so online refinement may lower the triangle
+  // cost to TriangleFloorShare of this one, and none below its physical minimum.
   in.Model.SetMinimumCoefficients(timecritical::FrameCostModel::Coefficients());
   in.Model.SetCoefficients(c);
   in.SetCoefficientFloors(true);

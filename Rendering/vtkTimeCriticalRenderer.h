@@ -34,9 +34,10 @@
  * Cost model: calibrated in the first render that has objects (still or
  * not: the start-up frame the user waits for anyway; about a dozen frames'
  * worth of the target, see Calibrate()), then refined from every measured
- * frame. Online refinement cannot lower a coefficient below half of what
- * the calibration measured (or SetCostCoefficients() gave), nor below what
- * no hardware beats, so a triangle never becomes free. The safety margin
+ * frame. Online refinement cannot lower the triangle cost below half of
+ * what the calibration measured (or SetCostCoefficients() gave), nor any
+ * coefficient below what no hardware beats, so a triangle never becomes
+ * free. The safety margin
  * follows the measured noise but never takes more than half of the time the
  * fixed part leaves the objects.
  *
@@ -215,8 +216,8 @@ public:
   /**
    * Start-up calibration: renders the current scene hidden at several
    * resolutions and zoom factors, times them, and fits the cost model; the
-   * online refinement may then lower each coefficient to half of the fit, no
-   * further. The renders are sized to the target (the larger of
+   * online refinement may then lower the triangle cost to half of the fit,
+   * no further. The renders are sized to the target (the larger of
    * TargetFrameTime and the effective target): 14 samples of two renders,
    * each drawing at most what one target affords, about 12 targets in all
    * plus the first upload of the scene, never more than 30 targets
@@ -234,8 +235,8 @@ public:
    * Cost coefficients (seconds): per frame, per draw call, per triangle and
    * per covered pixel (bounding-box pixels of the objects), plus a safety
    * margin added to the fixed time. All finite and >= 0, the triangle cost
-   * > 0. They are used as given; online refinement (when on) may lower each
-   * to half of it, and never below its physical minimum
+   * > 0. They are used as given; online refinement (when on) may lower the
+   * triangle cost to half of it, and none below its physical minimum
    * (timecritical::FrameCostModel::PhysicalMinimum(): a pixel is never free
    * either, so a pixel cost of 0 becomes 1e-12 after the first measured
    * frame).
