@@ -135,18 +135,18 @@ void ViewDependentRefinement::InitializeImpl(
     }
   }
 
-  this->ChildOffsets.assign(size_t(n) + 1, 0);
+  std::vector<uint32_t> childOffsets(size_t(n) + 1, 0);
   this->Children.assign(n - b, 0);
   for (uint32_t v = b; v < n; ++v)
   {
-    ++this->ChildOffsets[size_t(this->Parent[v]) + 1];
+    ++childOffsets[size_t(this->Parent[v]) + 1];
   }
   for (uint32_t v = 0; v < n; ++v)
   {
-    this->ChildOffsets[size_t(v) + 1] += this->ChildOffsets[v];
+    childOffsets[size_t(v) + 1] += childOffsets[v];
   }
   {
-    std::vector<uint32_t> fill(this->ChildOffsets.begin(), this->ChildOffsets.end() - 1);
+    std::vector<uint32_t> fill(childOffsets.begin(), childOffsets.end() - 1);
     for (uint32_t v = b; v < n; ++v)
     {
       this->Children[fill[this->Parent[v]]++] = v;
@@ -275,21 +275,29 @@ void ViewDependentRefinement::InitializeImpl(
     node.Sin = static_cast<float>(std::sqrt(std::max(0.0, 1.0 - cosine * cosine)));
   }
 
+  this->Link.assign(n, Links{});
+  for (uint32_t v = 0; v < n; ++v)
+  {
+    Links& l = this->Link[v];
+    l.Parent = this->Parent[v];
+    l.ChildBegin = childOffsets[v];
+    l.ChildEnd = childOffsets[size_t(v) + 1];
+    l.ReqBegin = this->ReqOffsets[v];
+    l.ReqEnd = this->ReqOffsets[size_t(v) + 1];
+  }
   this->Active.assign(n, 0);
-  this->ActiveChildren.assign(n, 0);
-  this->RequiredBy.assign(n, 0);
-  this->Blockers.assign(n, 0);
+  this->Holds.assign(n, 0);
   this->Display.assign(3 * size_t(nt), 0);
   this->DisplayId.assign(nt, 0);
   this->DisplayPos.assign(nt, None);
   this->SplitList.assign(n, Candidate{});
-  this->SplitListPos.assign(n, None);
   this->MergeList.assign(n, 0);
-  this->MergeListPos.assign(n, None);
   this->Keys.assign(n, CachedKey{ 0, 0.0f });
   this->Touched.assign(n, 0);
   this->Frame = 0;
   this->Stack.assign(n, 0);
+  this->StackStage.assign(n, 0);
+  this->StackIndex.assign(n, 0);
   this->Work.assign(3 * size_t(n) + 1, 0);
   this->MergeBits.assign(size_t(n) / 64 + 1, 0);
   // Each vertex enters a budget heap once per update, plus re-offers after
@@ -305,13 +313,15 @@ void ViewDependentRefinement::InitializeImpl(
 void ViewDependentRefinement::Reset()
 {
   std::fill(this->Active.begin(), this->Active.end(), 0);
-  std::fill(this->ActiveChildren.begin(), this->ActiveChildren.end(), 0);
-  std::fill(this->RequiredBy.begin(), this->RequiredBy.end(), 0);
-  std::fill(this->Blockers.begin(), this->Blockers.end(), 0);
+  std::fill(this->Holds.begin(), this->Holds.end(), 0);
+  for (Links& l : this->Link)
+  {
+    l.ActiveChildren = 0;
+    l.SplitPos = None;
+    l.MergePos = None;
+  }
   std::fill(this->DisplayPos.begin(), this->DisplayPos.end(), None);
   std::fill(this->Active.begin(), this->Active.begin() + this->B, 1);
-  std::fill(this->SplitListPos.begin(), this->SplitListPos.end(), None);
-  std::fill(this->MergeListPos.begin(), this->MergeListPos.end(), None);
   this->SplitListSize = 0;
   this->MergeListSize = 0;
   for (uint32_t w = 0; w < this->B; ++w)
@@ -592,15 +602,15 @@ bool ViewDependentRefinement::Wanted(uint32_t v)
 //------------------------------------------------------------------------------
 uint32_t ViewDependentRefinement::NextChild(uint32_t w) const
 {
-  const uint32_t i = this->ChildOffsets[w] + this->ActiveChildren[w];
-  return i < this->ChildOffsets[size_t(w) + 1] ? this->Children[i] : None;
+  const Links& l = this->Link[w];
+  const uint32_t i = l.ChildBegin + l.ActiveChildren;
+  return i < l.ChildEnd ? this->Children[i] : None;
 }
 
 uint32_t ViewDependentRefinement::LastActiveChild(uint32_t w) const
 {
-  return this->ActiveChildren[w] > 0
-    ? this->Children[this->ChildOffsets[w] + this->ActiveChildren[w] - 1]
-    : None;
+  const Links& l = this->Link[w];
+  return l.ActiveChildren > 0 ? this->Children[l.ChildBegin + l.ActiveChildren - 1] : None;
 }
 
 /*
@@ -612,53 +622,71 @@ uint32_t ViewDependentRefinement::LastActiveChild(uint32_t w) const
  * - split e_v is legal iff its needs are displayed (the last condition holds
  *   by closure: such a child would need v), so forced splits never block;
  * - merge e_v is legal iff no display vertex needs v: no displayed child, v is
- *   u's last displayed child, no displayed row holds v (RequiredBy), no row
- *   vertex has a displayed child above v.
+ *   u's last displayed child, no displayed row holds v, no row vertex has a
+ *   displayed child above v (all four counted together in Holds).
  * The row vertices being displayed and not finer than at e_v makes the birth
  * corners of e_v's triangles the nearest displayed ancestors of their corners,
  * so the incremental triangles are the selectively refined mesh of the front.
  */
-uint32_t ViewDependentRefinement::FirstRequirement(uint32_t v) const
+uint32_t ViewDependentRefinement::NextRequirement(uint32_t v, uint8_t& stage, uint32_t& index) const
 {
-  const uint32_t u = this->Parent[v];
-  if (!this->Active[u])
+  // The front only grows during a forced split, so what was displayed stays
+  // so and the scan resumes where it stopped (each row is read once).
+  const uint32_t u = this->Link[v].Parent;
+  switch (stage)
   {
-    return u;
-  }
-  const uint32_t sibling = this->NextChild(u);
-  if (sibling != v)
-  {
-    return sibling; // an earlier-split sibling (smaller id)
-  }
-  // Events whose row holds u, below v (those below v's previous sibling are
-  // displayed already: the sibling needed them).
-  {
-    const uint32_t previous = this->LastActiveChild(u);
-    const uint32_t* begin = this->Rev.data() + this->RevOffsets[u];
-    const uint32_t* end = this->Rev.data() + this->RevOffsets[size_t(u) + 1];
-    for (const uint32_t* r = std::upper_bound(begin, end, previous != None ? previous : 0);
-         r != end && *r < v; ++r)
-    {
-      if (!this->Active[*r])
+    case 0:
+      if (!this->Active[u])
       {
-        return *r;
+        return u;
       }
-    }
-  }
-  for (uint32_t i = this->ReqOffsets[v]; i < this->ReqOffsets[size_t(v) + 1]; ++i)
-  {
-    const uint32_t w = this->Req[i];
-    if (!this->Active[w])
+      stage = 1;
+      // fall through
+    case 1:
     {
-      return w;
+      const uint32_t sibling = this->NextChild(u);
+      if (sibling != v)
+      {
+        return sibling; // an earlier-split sibling (smaller id)
+      }
+      // Events whose row holds u, below v (those below v's previous sibling
+      // are displayed already: the sibling needed them).
+      const uint32_t previous = this->LastActiveChild(u);
+      const uint32_t* begin = this->Rev.data() + this->RevOffsets[u];
+      const uint32_t* end = this->Rev.data() + this->RevOffsets[size_t(u) + 1];
+      index = static_cast<uint32_t>(
+        std::upper_bound(begin, end, previous != None ? previous : 0) - this->Rev.data());
+      stage = 2;
     }
-    const uint32_t last = this->LastActiveChild(w);
-    if (last != None && last > v)
-    {
-      return None; // cannot happen on a closed front; kept as a safe refusal
-    }
+      // fall through
+    case 2:
+      for (const uint32_t end = this->RevOffsets[size_t(u) + 1];
+           index < end && this->Rev[index] < v; ++index)
+      {
+        if (!this->Active[this->Rev[index]])
+        {
+          return this->Rev[index];
+        }
+      }
+      // A displayed vertex that needs v (e.g. a row vertex's child above v):
+      // cannot happen on a closed front; kept as a safe refusal.
+      if (this->Holds[v] > 0)
+      {
+        return None;
+      }
+      index = this->Link[v].ReqBegin;
+      stage = 3;
+      // fall through
+    default:
+      for (const uint32_t end = this->Link[v].ReqEnd; index < end; ++index)
+      {
+        if (!this->Active[this->Req[index]])
+        {
+          return this->Req[index];
+        }
+      }
+      return v;
   }
-  return v;
 }
 
 bool ViewDependentRefinement::ForceSplit(uint32_t v)
@@ -670,7 +698,12 @@ bool ViewDependentRefinement::ForceSplit(uint32_t v)
   // Requirements have strictly smaller ids than what needs them, so the
   // stack never holds more than N entries and cannot cycle.
   uint32_t size = 0;
-  this->Stack[size++] = v;
+  auto push = [this, &size](uint32_t x) {
+    this->Stack[size] = x;
+    this->StackStage[size] = 0;
+    ++size;
+  };
+  push(v);
   while (size > 0)
   {
     const uint32_t x = this->Stack[size - 1];
@@ -679,7 +712,7 @@ bool ViewDependentRefinement::ForceSplit(uint32_t v)
       --size;
       continue;
     }
-    const uint32_t r = this->FirstRequirement(x);
+    const uint32_t r = this->NextRequirement(x, this->StackStage[size - 1], this->StackIndex[size - 1]);
     if (r == None)
     {
       ++this->Statistics.BlockedSplits;
@@ -696,7 +729,7 @@ bool ViewDependentRefinement::ForceSplit(uint32_t v)
     }
     else
     {
-      this->Stack[size++] = r;
+      push(r);
     }
   }
   return true;
@@ -704,10 +737,8 @@ bool ViewDependentRefinement::ForceSplit(uint32_t v)
 
 bool ViewDependentRefinement::CanMerge(uint32_t v) const
 {
-  // O(1): the row condition is counted by Split() and Merge() (Blockers).
-  return v >= this->B && this->Active[v] && this->ActiveChildren[v] == 0 &&
-    this->RequiredBy[v] == 0 && this->Blockers[v] == 0 &&
-    this->LastActiveChild(this->Parent[v]) == v;
+  // O(1): whatever needs v is counted by Split() and Merge() (Holds).
+  return v >= this->B && this->Active[v] && this->Holds[v] == 0;
 }
 
 //------------------------------------------------------------------------------
@@ -733,37 +764,15 @@ void ViewDependentRefinement::RemoveDisplay(uint32_t t)
   this->DisplayPos[t] = None;
 }
 
-namespace
-{
-/// Keeps x in a compact list with positions exactly when `member`.
-inline void SetMember(uint32_t* list, uint32_t* pos, uint32_t& size, uint32_t x, bool member)
-{
-  const uint32_t p = pos[x];
-  if (member && p == None)
-  {
-    pos[x] = size;
-    list[size++] = x;
-  }
-  else if (!member && p != None)
-  {
-    const uint32_t moved = list[--size];
-    list[p] = moved;
-    pos[moved] = p;
-    pos[x] = None;
-  }
-}
-}
-
 void ViewDependentRefinement::RefreshSplitCandidate(uint32_t w)
 {
   const uint32_t c = this->Active[w] ? this->NextChild(w) : None;
-  uint32_t p = this->SplitListPos[w];
+  uint32_t& p = this->Link[w].SplitPos;
   if (c != None)
   {
     if (p == None)
     {
       p = this->SplitListSize++;
-      this->SplitListPos[w] = p;
     }
     else if (this->SplitList[p].Id == c)
     {
@@ -777,27 +786,34 @@ void ViewDependentRefinement::RefreshSplitCandidate(uint32_t w)
     if (p != last)
     {
       this->SplitList[p] = this->SplitList[last];
-      this->SplitListPos[this->SplitList[p].Owner] = p;
+      this->Link[this->SplitList[p].Owner].SplitPos = p;
     }
-    this->SplitListPos[w] = None;
+    p = None;
   }
 }
 
 void ViewDependentRefinement::RefreshMergeCandidate(uint32_t x)
 {
   const bool member = this->CanMerge(x);
-  if (member == (this->MergeListPos[x] != None))
+  uint32_t& p = this->Link[x].MergePos;
+  if (member == (p != None))
   {
     return;
   }
-  SetMember(this->MergeList.data(), this->MergeListPos.data(), this->MergeListSize, x, member);
+  if (!member)
+  {
+    this->LeaveMergeCandidates(x);
+    return;
+  }
+  p = this->MergeListSize++;
+  this->MergeList[p] = x;
   // A vertex that becomes mergeable goes to the running update's queue
   // (only merges make vertices mergeable, always coarser ones than the merged).
-  if (member && this->Merging)
+  if (this->Merging)
   {
     this->MergeBits[x >> 6] |= uint64_t(1) << (x & 63);
   }
-  else if (member && this->Mode == UpdateMode::Budget)
+  else if (this->Mode == UpdateMode::Budget)
   {
     this->OfferMerge(x);
   }
@@ -805,39 +821,59 @@ void ViewDependentRefinement::RefreshMergeCandidate(uint32_t x)
 
 void ViewDependentRefinement::LeaveMergeCandidates(uint32_t x)
 {
-  SetMember(this->MergeList.data(), this->MergeListPos.data(), this->MergeListSize, x, false);
+  uint32_t& p = this->Link[x].MergePos;
+  if (p != None)
+  {
+    const uint32_t moved = this->MergeList[--this->MergeListSize];
+    this->MergeList[p] = moved;
+    this->Link[moved].MergePos = p;
+    p = None;
+  }
+}
+
+void ViewDependentRefinement::Hold(uint32_t x)
+{
+  if (this->Holds[x]++ == 0)
+  {
+    this->LeaveMergeCandidates(x);
+  }
+}
+
+void ViewDependentRefinement::Release(uint32_t x)
+{
+  if (--this->Holds[x] == 0)
+  {
+    this->RefreshMergeCandidate(x);
+  }
 }
 
 void ViewDependentRefinement::Split(uint32_t v)
 {
-  const uint32_t u = this->Parent[v];
+  const uint32_t u = this->Link[v].Parent;
   const uint32_t previous = this->LastActiveChild(u);
   this->Active[v] = 1;
-  ++this->ActiveChildren[u];
+  ++this->Link[u].ActiveChildren;
   ++this->ActiveVertexCount;
   ++this->Statistics.Splits;
-  // Counts leaving 0 take their vertex off the merge candidates (and back on
-  // when they return to 0, in Merge()).
-  for (uint32_t i = this->ReqOffsets[v]; i < this->ReqOffsets[size_t(v) + 1]; ++i)
-  {
-    const uint32_t x = this->Req[i];
-    if (this->RequiredBy[x]++ == 0)
-    {
-      this->LeaveMergeCandidates(x);
-    }
-  }
-  // u's last displayed child moves from `previous` to v: events between them
+  // v needs its parent, its previous sibling and its row; and u's last
+  // displayed child moves from `previous` to v, so the events between them
   // whose row holds u now have a row vertex with a displayed child above them.
+  this->Hold(u);
+  if (previous != None)
+  {
+    this->Hold(previous);
+  }
+  for (uint32_t i = this->Link[v].ReqBegin, end = this->Link[v].ReqEnd; i < end; ++i)
+  {
+    this->Hold(this->Req[i]);
+  }
   {
     const uint32_t* begin = this->Rev.data() + this->RevOffsets[u];
     const uint32_t* end = this->Rev.data() + this->RevOffsets[size_t(u) + 1];
     for (const uint32_t* r = std::upper_bound(begin, end, previous != None ? previous : 0);
          r != end && *r < v; ++r)
     {
-      if (this->Blockers[*r]++ == 0)
-      {
-        this->LeaveMergeCandidates(*r);
-      }
+      this->Hold(*r);
     }
   }
   for (uint32_t t = this->BlockOffsets[v]; t < this->BlockOffsets[size_t(v) + 1]; ++t)
@@ -855,12 +891,7 @@ void ViewDependentRefinement::Split(uint32_t v)
   }
   this->RefreshSplitCandidate(u);
   this->RefreshSplitCandidate(v);
-  this->RefreshMergeCandidate(v);
-  this->RefreshMergeCandidate(u);
-  if (previous != None)
-  {
-    this->RefreshMergeCandidate(previous);
-  }
+  this->RefreshMergeCandidate(v); // nothing needs it yet
   if (this->Mode == UpdateMode::Fixed)
   {
     // New split candidates: v's next sibling and v's first child.
@@ -878,31 +909,30 @@ void ViewDependentRefinement::Split(uint32_t v)
 
 void ViewDependentRefinement::Merge(uint32_t v)
 {
-  const uint32_t u = this->Parent[v];
+  const uint32_t u = this->Link[v].Parent;
   this->Active[v] = 0;
-  --this->ActiveChildren[u];
+  --this->Link[u].ActiveChildren;
   --this->ActiveVertexCount;
   ++this->Statistics.Merges;
-  for (uint32_t i = this->ReqOffsets[v]; i < this->ReqOffsets[size_t(v) + 1]; ++i)
+  this->LeaveMergeCandidates(v);
+  // The reverse of Split(); u's last displayed child moves back from v.
+  const uint32_t last = this->LastActiveChild(u);
+  this->Release(u);
+  if (last != None)
   {
-    const uint32_t x = this->Req[i];
-    if (--this->RequiredBy[x] == 0)
-    {
-      this->RefreshMergeCandidate(x);
-    }
+    this->Release(last);
+  }
+  for (uint32_t i = this->Link[v].ReqBegin, end = this->Link[v].ReqEnd; i < end; ++i)
+  {
+    this->Release(this->Req[i]);
   }
   {
-    // The reverse of Split(): u's last displayed child moves back from v.
-    const uint32_t last = this->LastActiveChild(u);
     const uint32_t* begin = this->Rev.data() + this->RevOffsets[u];
     const uint32_t* end = this->Rev.data() + this->RevOffsets[size_t(u) + 1];
     for (const uint32_t* r = std::upper_bound(begin, end, last != None ? last : 0);
          r != end && *r < v; ++r)
     {
-      if (--this->Blockers[*r] == 0)
-      {
-        this->RefreshMergeCandidate(*r);
-      }
+      this->Release(*r);
     }
   }
   for (uint32_t t = this->BlockOffsets[v]; t < this->BlockOffsets[size_t(v) + 1]; ++t)
@@ -920,13 +950,6 @@ void ViewDependentRefinement::Merge(uint32_t v)
   }
   this->RefreshSplitCandidate(u);
   this->RefreshSplitCandidate(v);
-  this->RefreshMergeCandidate(v);
-  this->RefreshMergeCandidate(u);
-  const uint32_t last = this->LastActiveChild(u);
-  if (last != None)
-  {
-    this->RefreshMergeCandidate(last);
-  }
   if (this->Mode == UpdateMode::Budget)
   {
     this->Touched[v] = this->TouchFrame;
@@ -995,7 +1018,7 @@ void ViewDependentRefinement::MergeUnwanted()
     const int bit = 63 - __builtin_clzll(bits[word]);
     bits[word] &= ~(uint64_t(1) << bit);
     const uint32_t x = uint32_t(word * 64 + size_t(bit));
-    if (this->MergeListPos[x] == None || this->Wanted(x)) // !CanMerge(x) || ...
+    if (this->Link[x].MergePos == None || this->Wanted(x)) // !CanMerge(x) || ...
     {
       continue;
     }
@@ -1037,8 +1060,8 @@ const RefinementStatistics& ViewDependentRefinement::UpdateFixedAccuracy()
   while (this->WorkSize > 0)
   {
     const uint32_t c = this->Work[--this->WorkSize];
-    if (c == None || this->Active[c] || !this->Active[this->Parent[c]] ||
-      this->NextChild(this->Parent[c]) != c || !this->Wanted(c))
+    if (c == None || this->Active[c] || !this->Active[this->Link[c].Parent] ||
+      this->NextChild(this->Link[c].Parent) != c || !this->Wanted(c))
     {
       continue;
     }
@@ -1247,8 +1270,8 @@ const RefinementStatistics& ViewDependentRefinement::UpdateBudget(
     }
     const HeapEntry top = split[0];
     const uint32_t s = top.Id;
-    if (this->Active[s] || this->Touched[s] == this->TouchFrame || !this->Active[this->Parent[s]] ||
-      this->NextChild(this->Parent[s]) != s)
+    if (this->Active[s] || this->Touched[s] == this->TouchFrame ||
+      !this->Active[this->Link[s].Parent] || this->NextChild(this->Link[s].Parent) != s)
     {
       std::pop_heap(split, split + this->SplitSize, SplitOrder());
       --this->SplitSize;

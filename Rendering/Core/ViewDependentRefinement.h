@@ -235,8 +235,9 @@ private:
   bool ForceSplit(uint32_t v);
   /// No display vertex needs v (and v is a leaf, the last child of its parent).
   bool CanMerge(uint32_t v) const;
-  /// First inactive vertex whose split v needs, v itself when none; UINT32_MAX when blocked.
-  uint32_t FirstRequirement(uint32_t v) const;
+  /// First inactive vertex whose split v needs, v itself when none; UINT32_MAX
+  /// when blocked. Resumes the scan at (stage, index), 0 at first.
+  uint32_t NextRequirement(uint32_t v, uint8_t& stage, uint32_t& index) const;
   uint32_t NextChild(uint32_t w) const;
   uint32_t LastActiveChild(uint32_t w) const;
   void AddDisplay(uint32_t t);
@@ -245,6 +246,9 @@ private:
   void RefreshSplitCandidate(uint32_t w);
   void RefreshMergeCandidate(uint32_t x);
   void LeaveMergeCandidates(uint32_t x); // x no longer CanMerge()
+  // One more / one fewer displayed vertex needs x (Holds).
+  void Hold(uint32_t x);
+  void Release(uint32_t x);
   /// Merges every unwanted vertex that nothing displayed needs, finest first
   /// (stops early when a bounded budget update runs out of time).
   void MergeUnwanted();
@@ -267,17 +271,28 @@ private:
   uint32_t B = 0;
   uint32_t T = 0;
   std::vector<uint32_t> Parent;
-  std::vector<uint32_t> ChildOffsets, Children; // children sorted by id
-  std::vector<uint32_t> ActiveChildren;         // active children = a prefix of the sorted ones
+  std::vector<uint32_t> Children; // of each vertex, sorted by id
+  /// What Split(), Merge() and the candidate lists read of one vertex, in one
+  /// cache line's half (they are reached at random).
+  struct Links
+  {
+    uint32_t Parent;
+    uint32_t ChildBegin, ChildEnd; // Children
+    uint32_t ActiveChildren;       // displayed children: a prefix of the sorted ones
+    uint32_t SplitPos, MergePos;   // in SplitList, MergeList (UINT32_MAX: absent)
+    uint32_t ReqBegin, ReqEnd;     // requirement row (Req)
+  };
+  std::vector<Links> Link;
   std::vector<uint8_t> Active;
   // Requirement rows (see the .cxx): vertices that must be displayed, with no
   // displayed child above v, while v is; and their transpose.
   std::vector<uint32_t> ReqOffsets, Req;
   std::vector<uint32_t> RevOffsets, Rev;
-  std::vector<uint32_t> RequiredBy; // displayed vertices whose row holds the vertex
-  // Row vertices of the vertex with a displayed child above it (that child needs
-  // it), kept by Split() and Merge() so that CanMerge() is O(1).
-  std::vector<uint32_t> Blockers;
+  // Displayed vertices that need the vertex: its displayed children, its next
+  // sibling, the displayed vertices whose row holds it, and the events whose
+  // row vertex has a displayed child above them (kept by Split() and Merge();
+  // a display vertex can be merged exactly when this is 0).
+  std::vector<uint32_t> Holds;
   std::vector<uint32_t> BlockOffsets; // triangles of block v: [BlockOffsets[v], BlockOffsets[v+1])
   std::vector<uint32_t> BirthCorners; // corners of each triangle when it appears
   std::vector<uint32_t> StarOffsets, StarSlots; // slots 3t+k that turn from parent to v at split
@@ -290,10 +305,9 @@ private:
   uint32_t ActiveVertexCount = 0;
 
   // Split candidates: the next child of each display vertex that has one
-  // (positions by owner); merge candidates: exactly the vertices CanMerge()
-  // (positions: UINT32_MAX absent).
+  // (positions by owner); merge candidates: exactly the vertices CanMerge().
   std::vector<Candidate> SplitList;
-  std::vector<uint32_t> SplitListPos, MergeList, MergeListPos;
+  std::vector<uint32_t> MergeList;
   uint32_t SplitListSize = 0, MergeListSize = 0;
 
   std::vector<CachedKey> Keys;
@@ -302,7 +316,9 @@ private:
   bool ContinueUpdate = false;      // the last budget update was interrupted
   uint32_t Frame = 0;
 
-  std::vector<uint32_t> Stack; // forced splits
+  std::vector<uint32_t> Stack; // forced splits, and where each one's scan stands
+  std::vector<uint8_t> StackStage;
+  std::vector<uint32_t> StackIndex;
   std::vector<uint32_t> Work;  // fixed-accuracy split candidates
   uint32_t WorkSize = 0;
   // MergeUnwanted()'s queue, finest first: a bit per vertex, popped by a
