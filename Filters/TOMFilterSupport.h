@@ -29,9 +29,13 @@ struct PreparedSurface
   vtkSmartPointer<vtkPolyData> Triangles;
   /// 3 coordinates per point of Triangles.
   std::vector<double> Points;
-  /// 3 point ids per triangle of Triangles.
+  /// 3 point ids per triangle given to the cores (duplicates left out).
   std::vector<uint32_t> Ids;
-  /// Vertex, line and degenerate cells left out.
+  /// The cell of Triangles each triangle of Ids comes from.
+  std::vector<vtkIdType> Cells;
+  /// Triangles left out because an earlier one has the same three points.
+  vtkIdType NumberOfDuplicateTriangles = 0;
+  /// Vertex, line, degenerate and duplicate cells left out.
   vtkIdType NumberOfDroppedCells = 0;
   /// Input points merged into coincident ones.
   vtkIdType NumberOfMergedPoints = 0;
@@ -47,8 +51,11 @@ enum class SurfaceStatus
 /**
  * Checks and prepares `input` for `filter`: rejects out-of-range point ids,
  * non-finite coordinates and inputs without surface cells; merges coincident
- * points; triangulates polygons and strips; drops vertices, lines and
- * degenerate cells with a warning on `filter`. Reports progress up to 0.05.
+ * points; triangulates polygons and strips; drops vertices, lines,
+ * degenerate cells and duplicate triangles (same three points, in any order:
+ * what appending coincident copies gives, which would make the collapses
+ * quadratic in the number of copies) with a warning on `filter`. Reports
+ * progress up to 0.05.
  */
 SurfaceStatus PrepareSurface(vtkAlgorithm* filter, vtkPolyData* input, PreparedSurface& surface);
 

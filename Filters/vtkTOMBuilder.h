@@ -11,8 +11,9 @@
  * with the reordered points and triangles.
  *
  * The input is cleaned first: coincident points are merged, polygons and
- * strips triangulated; lines, vertices and degenerate triangles are dropped
- * with a warning. Input without surface cells, out-of-range point ids and
+ * strips triangulated; lines, vertices, degenerate triangles and duplicate
+ * triangles (the same three points as an earlier one) are dropped with a
+ * warning. Input without surface cells, out-of-range point ids and
  * non-finite coordinates are errors (empty output). An empty input (no points,
  * no cells: a rank without data in parallel) gives an empty output without a
  * message.

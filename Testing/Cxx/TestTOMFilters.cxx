@@ -3,9 +3,11 @@
 #include "FilterTestSupport.h"
 #include "TOMMesh.h"
 #include "vtkExtractTOMResolution.h"
+#include "vtkMergeTreeBuilder.h"
 #include "vtkTOMBuilder.h"
 #include "vtkTOMFieldData.h"
 
+#include "vtkAppendPolyData.h"
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
 #include "vtkFieldData.h"
@@ -15,6 +17,7 @@
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkReverseSense.h"
 #include "vtkSmartPointer.h"
 #include "vtkTypeUInt32Array.h"
 
@@ -23,6 +26,7 @@
 #include <cmath>
 #include <fstream>
 #include <limits>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -171,6 +175,63 @@ TEST(vtkTOMBuilder, DuplicatePointsAreMergedAndDegenerateCellsDropped)
   EXPECT_EQ(tom->GetNumberOfPolys(), 2);
   EXPECT_EQ(builder->GetNumberOfMergedPoints(), 2);
   EXPECT_EQ(builder->GetNumberOfDroppedCells(), 2);
+}
+
+TEST(vtkTOMBuilder, CoincidentCopiesAreDeduplicated)
+{
+  // A careless append of coincident copies: after point merging every copy's
+  // triangles repeat the first copy's (in either orientation). They are
+  // dropped with one warning, so the build stays linear in the copies and the
+  // output is the mesh once, with the first copy's cell data.
+  auto sphere = MakeSphere(12);
+  const vtkIdType triangles = sphere->GetNumberOfPolys();
+  vtkNew<vtkAppendPolyData> append;
+  for (int copy = 0; copy < 300; ++copy)
+  {
+    append->AddInputData(sphere);
+  }
+  // One more copy with every triangle reversed: the same point sets.
+  vtkNew<vtkReverseSense> reversed;
+  reversed->SetInputData(sphere);
+  append->AddInputConnection(reversed->GetOutputPort());
+  append->Update();
+  for (bool mergeTree : { false, true })
+  {
+    vtkSmartPointer<vtkPolyDataAlgorithm> builder;
+    if (mergeTree)
+    {
+      builder = vtkSmartPointer<vtkMergeTreeBuilder>::New();
+    }
+    else
+    {
+      builder = vtkSmartPointer<vtkTOMBuilder>::New();
+    }
+    MessageLog log(builder);
+    builder->SetInputData(append->GetOutput());
+    builder->Update();
+    vtkPolyData* out = builder->GetOutput();
+    EXPECT_TRUE(log.Errors.empty()) << log.AllErrors();
+    bool warned = false;
+    for (const std::string& w : log.Warnings)
+    {
+      warned = warned ||
+        w.find("Dropping " + std::to_string(300 * triangles) + " duplicate triangles") !=
+          std::string::npos;
+    }
+    EXPECT_TRUE(warned) << mergeTree;
+    EXPECT_EQ(out->GetNumberOfPolys(), triangles);
+    EXPECT_EQ(out->GetNumberOfPoints(), sphere->GetNumberOfPoints());
+    vtkDataArray* cellIds = out->GetCellData()->GetArray("InputCellId");
+    ASSERT_NE(cellIds, nullptr);
+    std::set<double> ids;
+    for (vtkIdType c = 0; c < out->GetNumberOfCells(); ++c)
+    {
+      ids.insert(cellIds->GetTuple1(c));
+    }
+    EXPECT_EQ(static_cast<vtkIdType>(ids.size()), triangles); // each first-copy cell once
+    vtkNew<vtkTOMFieldData> reader;
+    EXPECT_TRUE(reader->Read(out)) << reader->GetErrorMessage();
+  }
 }
 
 TEST(vtkTOMBuilder, OneTriangle)
