@@ -1361,7 +1361,8 @@ void CollapseEngine::PrefetchCollapse(uint32_t v, int stage)
   const uint32_t* list = this->Pool.data() + rv.AdjStart;
   const uint32_t target = rv.Target;
   const Vertex* rt = target != Invalid ? &this->Vertices[target] : nullptr;
-  const uint32_t* listT = rt ? this->Pool.data() + rt->AdjStart : nullptr;
+  // Read only by the stages after the one that fetches the target's record.
+  auto listT = [this, rt]() { return this->Pool.data() + rt->AdjStart; };
   auto fetchTriangles = [this](const uint32_t* l, uint32_t n) {
     for (uint32_t i = 0; i < n; ++i)
     {
@@ -1389,20 +1390,36 @@ void CollapseEngine::PrefetchCollapse(uint32_t v, int stage)
       fetchTriangles(list, rv.AdjCount);
       if (rt)
       {
-        Prefetch(listT);
+        Prefetch(listT());
       }
       break;
     case 3:
       fetchNeighbours(list, rv.AdjCount);
       if (rt)
       {
-        fetchTriangles(listT, rt->AdjCount);
+        fetchTriangles(listT(), rt->AdjCount);
+      }
+      break;
+    case 4:
+      if (rt)
+      {
+        fetchNeighbours(listT(), rt->AdjCount);
       }
       break;
     default:
+      // Only for schedules that see further ahead (PrefetchCandidate): the
+      // quadrics that the collapse merges (v's, its target's) and evaluates
+      // (v's neighbours', which get the target as a new candidate).
+      Prefetch(&this->Quadrics[v]);
       if (rt)
       {
-        fetchNeighbours(listT, rt->AdjCount);
+        Prefetch(&this->Quadrics[target]);
+      }
+      for (uint32_t i = 0; i < rv.AdjCount; ++i)
+      {
+        const Tri& tri = this->Tris[list[i] >> 2];
+        Prefetch(&this->Quadrics[tri.V[Next3(list[i] & 3u)]]);
+        Prefetch(&this->Quadrics[tri.V[Prev3(list[i] & 3u)]]);
       }
       break;
   }

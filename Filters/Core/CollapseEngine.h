@@ -637,6 +637,11 @@ public:
   uint32_t& Tag(uint32_t v) { return this->Vertices[v].Tag; }
   /// Without a heap: the vertex whose collapse probably comes next, prefetched meanwhile.
   void SetPrefetchHint(uint32_t v) { this->PrefetchHint = v; }
+  /// Without a heap: stage 0-5 of the prefetch of v's collapse into its
+  /// target (v's record; lists; triangles; neighbours; quadrics), each stage
+  /// reading what the earlier ones fetched, for schedules that see several
+  /// collapses ahead and spread the stages over them.
+  void PrefetchCandidate(uint32_t v, int stage) { this->PrefetchCollapse(v, stage); }
 
   /// Calls f(x) for each neighbour x of v (twice for most), v's list compacted.
   template <typename F>

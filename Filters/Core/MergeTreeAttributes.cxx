@@ -298,41 +298,32 @@ void SortRow(uint32_t* first, uint32_t* last)
 }
 
 //------------------------------------------------------------------------------
+namespace
+{
+void CheckShadingWeight(const MergeTreeErrorOptions& options)
+{
+  if (!(options.ShadingWeight >= 0.0) || !std::isfinite(options.ShadingWeight))
+  {
+    throw std::invalid_argument("ComputeMergeTree: ShadingWeight must be finite and >= 0");
+  }
+}
+
+//------------------------------------------------------------------------------
 // One pass over the collapse sequence, finest event first. Costs are cache
 // misses on vertices and triangles scattered by the TOM order, so the state
 // lives in one line per vertex (Node) and half a line per triangle (Tri), the
 // next events' lines are prefetched, and the monotone pass ("must be split
 // first", ViewDependentRefinement's rule) runs in the same loop: every event it
 // depends on is earlier in the replay, so its final error and depth are known.
-MergeTree ComputeMergeTree(const TOMMesh& tom, const double* points, const uint16_t* levels,
+// The TOM must be valid and the points finite.
+MergeTree Replay(const TOMMesh& tom, const double* points, const uint16_t* levels,
   const MergeTreeErrorOptions& options)
 {
-  if (!(options.ShadingWeight >= 0.0) || !std::isfinite(options.ShadingWeight))
-  {
-    throw std::invalid_argument("ComputeMergeTree: ShadingWeight must be finite and >= 0");
-  }
   const double shadingWeight = options.ShadingWeight;
   const bool shading = shadingWeight > 0.0;
-  const std::string problem = TOMValidator::Check(tom);
-  if (!problem.empty())
-  {
-    throw std::invalid_argument("ComputeMergeTree: invalid TOM: " + problem);
-  }
   const uint32_t N = tom.GetNumberOfVertices();
   const uint32_t B = tom.BaseVertexCount;
   const uint32_t T = tom.GetNumberOfTriangles();
-  if (N > 0 && points == nullptr)
-  {
-    throw std::invalid_argument("ComputeMergeTree: no points");
-  }
-  for (size_t i = 0; i < 3 * static_cast<size_t>(N); ++i)
-  {
-    if (!std::isfinite(points[i]))
-    {
-      throw std::invalid_argument(
-        "ComputeMergeTree: non-finite coordinate of point " + std::to_string(i / 3));
-    }
-  }
   const uint32_t* S = tom.Substitution.data();
 
   MergeTree tree;
@@ -649,7 +640,9 @@ MergeTree ComputeMergeTree(const TOMMesh& tom, const double* points, const uint1
       const Shade& sv = shade[v];
       const Vec nuN = { su.N[0], su.N[1], su.N[2] };
       const Vec nvN = { sv.N[0], sv.N[1], sv.N[2] };
-      double localAngle = Angle(nuN, nvN);
+      // The angle to the shown normal, or to u's own when no triangle is
+      // left: one acos (a good part of an event's cost).
+      double localAngle = -1.0;
       if (nearA != None)
       {
         const Vec w = ClosestWeights(pv, pu, P(nearA), P(nearB));
@@ -663,6 +656,10 @@ MergeTree ComputeMergeTree(const TOMMesh& tom, const double* points, const uint1
         {
           localAngle = Angle(nvN, { shown.X / len, shown.Y / len, shown.Z / len });
         }
+      }
+      if (localAngle < 0.0)
+      {
+        localAngle = Angle(nuN, nvN);
       }
       const double deviation =
         std::min(std::max<double>(su.Deviation, sv.Deviation) + localAngle, Pi);
@@ -750,5 +747,40 @@ MergeTree ComputeMergeTree(const TOMMesh& tom, const double* points, const uint1
     tree.Level[w] = tree.LevelCount;
   }
   return tree;
+}
+}
+
+//------------------------------------------------------------------------------
+MergeTree ComputeMergeTree(const TOMMesh& tom, const double* points, const uint16_t* levels,
+  const MergeTreeErrorOptions& options)
+{
+  CheckShadingWeight(options);
+  const std::string problem = TOMValidator::Check(tom);
+  if (!problem.empty())
+  {
+    throw std::invalid_argument("ComputeMergeTree: invalid TOM: " + problem);
+  }
+  const uint32_t N = tom.GetNumberOfVertices();
+  if (N > 0 && points == nullptr)
+  {
+    throw std::invalid_argument("ComputeMergeTree: no points");
+  }
+  for (size_t i = 0; i < 3 * static_cast<size_t>(N); ++i)
+  {
+    if (!std::isfinite(points[i]))
+    {
+      throw std::invalid_argument(
+        "ComputeMergeTree: non-finite coordinate of point " + std::to_string(i / 3));
+    }
+  }
+  return Replay(tom, points, levels, options);
+}
+
+//------------------------------------------------------------------------------
+MergeTree detail::ComputeBuiltMergeTree(const TOMMesh& tom, const double* points,
+  const uint16_t* levels, const MergeTreeErrorOptions& options)
+{
+  CheckShadingWeight(options);
+  return Replay(tom, points, levels, options);
 }
 }

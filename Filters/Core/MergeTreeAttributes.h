@@ -54,6 +54,17 @@ struct MergeTreeErrorOptions
  */
 TIMECRITICALFILTERSCORE_EXPORT MergeTree ComputeMergeTree(const TOMMesh& tom,
   const double* points, const uint16_t* levels, const MergeTreeErrorOptions& options = {});
+
+namespace detail
+{
+/**
+ * Internal to FiltersCore: ComputeMergeTree for the TOM that MergeTreeBuilder
+ * has just built (valid by construction, finite points), without validating
+ * it again. Throws std::invalid_argument on an invalid ShadingWeight.
+ */
+MergeTree ComputeBuiltMergeTree(const TOMMesh& tom, const double* points, const uint16_t* levels,
+  const MergeTreeErrorOptions& options);
+}
 }
 
 #endif

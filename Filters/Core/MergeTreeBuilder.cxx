@@ -56,6 +56,7 @@ namespace
 using collapse::Candidate;
 using collapse::CollapseEngine;
 using collapse::Invalid;
+using collapse::Prefetch;
 
 /// A candidate collapse: u's key as an order-preserving integer, u and its target.
 struct Entry
@@ -160,6 +161,7 @@ private:
   void Apply(uint32_t u, uint32_t w, uint16_t level);
   void Touch(uint32_t x);
   Entry EntryOf(uint32_t x) const;
+  void PrefetchAhead();
   void CollectAll();
   void CollectNext();
   bool IsTouched(uint32_t v) const { return this->Touched[v] == this->Stamp; }
@@ -186,6 +188,13 @@ private:
   std::vector<uint8_t> Touched; // == Stamp: touched in this level (then the engine's tag
                                 // of the vertex is its entry in Next)
   uint8_t Stamp = 0;
+  // The next untouched candidates (indices into Current), each with the
+  // prefetch stage it has reached: see PrefetchAhead.
+  static constexpr unsigned Lookahead = 5;
+  size_t Upcoming[Lookahead] = {};
+  int UpcomingStage[Lookahead] = {};
+  unsigned UpcomingCount = 0;
+  size_t ScanPosition = 0; // next entry of Current to consider for Upcoming
   std::vector<uint16_t> StepLevel;
   uint16_t LevelCount = 0;
   size_t ReportEvery = 1;
@@ -319,23 +328,65 @@ uint32_t LevelSchedule::Alternative(uint32_t u, uint32_t failedTarget, uint32_t 
 }
 
 //------------------------------------------------------------------------------
+void LevelSchedule::PrefetchAhead()
+{
+  // A collapse waits on chains of loads (records, lists, triangles,
+  // neighbours, quadrics) that the work of one collapse cannot hide for the
+  // next. The sorted list shows several collapses ahead: the k-th next
+  // untouched candidate gets stage Stages[k] of its prefetch, so that each
+  // stage reads what was fetched one collapse or more earlier (on igea-loop1
+  // the collapses take a fifth less time than with the next one alone).
+  // Candidates touched meanwhile are skipped by the level, and dropped here
+  // once passed.
+  static constexpr int Stages[Lookahead] = { 5, 3, 2, 1, 0 };
+  static constexpr size_t TouchedAhead = 16; // entries whose touched bytes are fetched
+  unsigned kept = 0;
+  for (unsigned i = 0; i < this->UpcomingCount; ++i)
+  {
+    if (this->Upcoming[i] >= this->Position)
+    {
+      this->Upcoming[kept] = this->Upcoming[i];
+      this->UpcomingStage[kept++] = this->UpcomingStage[i];
+    }
+  }
+  this->UpcomingCount = kept;
+  this->ScanPosition = std::max(this->ScanPosition, this->Position);
+  while (this->UpcomingCount < Lookahead && this->ScanPosition < this->Current.size())
+  {
+    if (this->ScanPosition + TouchedAhead < this->Current.size())
+    {
+      const Entry& later = this->Current[this->ScanPosition + TouchedAhead];
+      Prefetch(&this->Touched[later.Vertex]);
+      Prefetch(&this->Touched[later.Target]);
+    }
+    const Entry& next = this->Current[this->ScanPosition];
+    if (!this->IsTouched(next.Vertex) && !this->IsTouched(next.Target))
+    {
+      this->Upcoming[this->UpcomingCount] = this->ScanPosition;
+      this->UpcomingStage[this->UpcomingCount++] = -1;
+    }
+    ++this->ScanPosition;
+  }
+  for (unsigned k = 0; k < this->UpcomingCount; ++k)
+  {
+    const Entry& entry = this->Current[this->Upcoming[k]];
+    while (this->UpcomingStage[k] < Stages[k])
+    {
+      const int stage = ++this->UpcomingStage[k];
+      this->Engine.PrefetchCandidate(entry.Vertex, stage);
+      if (stage == 0)
+      {
+        this->Engine.PrefetchCandidate(entry.Target, 0); // its record, read from stage 1 on
+      }
+    }
+  }
+}
+
+//------------------------------------------------------------------------------
 void LevelSchedule::Apply(uint32_t u, uint32_t w, uint16_t level)
 {
   CollapseEngine& e = this->Engine;
-  // The next untouched candidate probably comes next: fetched meanwhile.
-  uint32_t hint = Invalid;
-  for (size_t i = this->Position, end = std::min(this->Current.size(), this->Position + 4); i < end;
-       ++i)
-  {
-    const Entry& next = this->Current[i];
-    if (!this->IsTouched(next.Vertex) && !this->IsTouched(next.Target) && next.Vertex != u &&
-      next.Vertex != w && next.Target != w)
-    {
-      hint = next.Vertex;
-      break;
-    }
-  }
-  e.SetPrefetchHint(hint);
+  this->PrefetchAhead();
 
   const uint32_t before = e.GetRemovedCount();
   e.ApplyCollapse(u, w);
@@ -374,6 +425,8 @@ bool LevelSchedule::RunLevel(uint16_t level, uint32_t& applied, bool& capped)
   this->Next.clear();
   this->Deferred.clear();
   this->Position = 0;
+  this->UpcomingCount = 0;
+  this->ScanPosition = 0;
   this->RestStart = this->Current.size();
   applied = 0;
   capped = false;
@@ -550,7 +603,8 @@ MergeTreeBuildResult MergeTreeBuilder::Build(const double* points, size_t number
     std::copy_n(points + 3 * static_cast<size_t>(result.TOM.VertexOrder[v]), 3,
       positions.begin() + 3 * static_cast<std::ptrdiff_t>(v));
   }
-  result.Tree = ComputeMergeTree(tom, positions.data(), levels.data(), this->Options.Errors);
+  result.Tree =
+    detail::ComputeBuiltMergeTree(tom, positions.data(), levels.data(), this->Options.Errors);
   return result;
 }
 }
