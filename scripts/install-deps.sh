@@ -7,7 +7,8 @@
 #   install-deps.sh --list     print the package list
 #   install-deps.sh --check    install nothing; verify that every package is
 #                              installed, that the programs and Python modules
-#                              the tests and the demo run are there, that a
+#                              the tests and the demo run are there, that the
+#                              sanitizer and libFuzzer toolchains link, that a
 #                              configure of the project finds every dependency,
 #                              and that each file it finds belongs to a listed
 #                              package or to one they depend on (so nothing
@@ -20,6 +21,10 @@ root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 packages=(
   # toolchain and test tools
   cmake g++ make googletest libgtest-dev xvfb xauth
+  # Clang and its runtime libraries (libFuzzer, sanitizers) for the fuzz
+  # targets (scripts/run-fuzzers.sh); g++ brings GCC's sanitizer runtimes
+  # for scripts/run-sanitizers.sh
+  clang libclang-rt-14-dev
   # ParaView 5.11 with its bundled VTK 9.2, and its Python modules
   paraview paraview-dev python3-paraview python3-numpy python3-matplotlib
   # libraries of the project (OpenImageIO: the library only, found without its
@@ -33,7 +38,7 @@ packages=(
   libgl1-mesa-dri
 )
 # Programs the tests, the demo and this script run.
-programs=(cmake c++ make xvfb-run xauth Xvfb pvbatch dpkg-query apt-cache)
+programs=(cmake c++ clang++ make xvfb-run xauth Xvfb pvbatch dpkg-query apt-cache)
 # Modules of /usr/bin/python3 (the interpreter that imports ParaView's VTK).
 python_modules=(numpy matplotlib vtkmodules.vtkCommonCore paraview.simple)
 # Cache entries of CMake's own optional probes, which the build uses when
@@ -75,6 +80,21 @@ check() {
       { echo "check: /usr/bin/python3 cannot import $p"; problems=1; }
   done
   [ $problems -eq 0 ] && echo "check: programs (${programs[*]}) and Python modules (${python_modules[*]}) found"
+
+  # The sanitizer and fuzzing toolchains link (scripts/run-sanitizers.sh with
+  # c++, scripts/run-fuzzers.sh with clang++ and libFuzzer).
+  local toolchain
+  toolchain="$(mktemp -d "${TMPDIR:-/tmp}/timecritical-toolchain.XXXXXX")"
+  echo 'int main() { return 0; }' >"$toolchain/main.cxx"
+  echo 'extern "C" int LLVMFuzzerTestOneInput(const unsigned char*, unsigned long) { return 0; }' >"$toolchain/fuzz.cxx"
+  if ! c++ -fsanitize=address,undefined "$toolchain/main.cxx" -o "$toolchain/main" >"$toolchain/log" 2>&1; then
+    echo "check: c++ cannot link with -fsanitize=address,undefined:"; head -5 "$toolchain/log"; problems=1
+  elif ! clang++ -fsanitize=fuzzer,address,undefined "$toolchain/fuzz.cxx" -o "$toolchain/fuzz" >"$toolchain/log" 2>&1; then
+    echo "check: clang++ cannot link a libFuzzer target (libclang-rt-14-dev):"; head -5 "$toolchain/log"; problems=1
+  else
+    echo "check: c++ links with AddressSanitizer + UBSan, clang++ links libFuzzer targets"
+  fi
+  rm -rf "$toolchain"
 
   # A configure of the project in a scratch folder: every find_package and
   # find_program the build runs, with optional dependencies made mandatory.
