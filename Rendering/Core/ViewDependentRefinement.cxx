@@ -284,6 +284,27 @@ void ViewDependentRefinement::InitializeImpl(
     l.ChildEnd = childOffsets[size_t(v) + 1];
     l.ReqBegin = this->ReqOffsets[v];
     l.ReqEnd = this->ReqOffsets[size_t(v) + 1];
+    l.BlockBegin = this->BlockOffsets[v];
+    l.BlockEnd = this->BlockOffsets[size_t(v) + 1];
+    l.StarBegin = this->StarOffsets[v];
+    l.StarEnd = this->StarOffsets[size_t(v) + 1];
+    l.RevBegin = l.RevEnd = 0;
+    l.KeyFrame = 0;
+    l.Key = 0.0f;
+  }
+  for (uint32_t w = 0; w < n; ++w)
+  {
+    const uint32_t* begin = this->Rev.data() + this->RevOffsets[w];
+    const uint32_t* end = this->Rev.data() + this->RevOffsets[size_t(w) + 1];
+    uint32_t previous = 0;
+    for (uint32_t i = childOffsets[w]; i < childOffsets[size_t(w) + 1]; ++i)
+    {
+      const uint32_t v = this->Children[i];
+      const uint32_t* first = std::upper_bound(begin, end, previous);
+      this->Link[v].RevBegin = static_cast<uint32_t>(first - this->Rev.data());
+      this->Link[v].RevEnd = static_cast<uint32_t>(std::lower_bound(first, end, v) - this->Rev.data());
+      previous = v;
+    }
   }
   this->Active.assign(n, 0);
   this->Holds.assign(n, 0);
@@ -292,7 +313,6 @@ void ViewDependentRefinement::InitializeImpl(
   this->DisplayPos.assign(nt, None);
   this->SplitList.assign(n, Candidate{});
   this->MergeList.assign(n, 0);
-  this->Keys.assign(n, CachedKey{ 0, 0.0f });
   this->Touched.assign(n, 0);
   this->Frame = 0;
   this->Stack.assign(n, 0);
@@ -572,7 +592,10 @@ void ViewDependentRefinement::NextFrame()
 {
   if (++this->Frame == 0) // stamps wrapped: clear them once every 2^32 updates
   {
-    std::fill(this->Keys.begin(), this->Keys.end(), CachedKey{ 0, 0.0f });
+    for (Links& l : this->Link)
+    {
+      l.KeyFrame = 0;
+    }
     std::fill(this->Touched.begin(), this->Touched.end(), 0u);
     this->Frame = 1;
     this->TouchFrame = 0;
@@ -581,18 +604,18 @@ void ViewDependentRefinement::NextFrame()
 
 float ViewDependentRefinement::Key(uint32_t v)
 {
-  CachedKey& k = this->Keys[v];
-  if (k.Frame != this->Frame)
+  Links& l = this->Link[v];
+  if (l.KeyFrame != this->Frame)
   {
-    k.Frame = this->Frame;
-    k.Key = static_cast<float>(this->Priority(v));
+    l.KeyFrame = this->Frame;
+    l.Key = static_cast<float>(this->Priority(v));
   }
-  return k.Key;
+  return l.Key;
 }
 
 bool ViewDependentRefinement::Wanted(uint32_t v)
 {
-  if (this->Keys[v].Frame != this->Frame && this->SurelyUnwanted(this->Nodes[v]))
+  if (this->Link[v].KeyFrame != this->Frame && this->SurelyUnwanted(this->Nodes[v]))
   {
     return false; // cheaper than Key() (not cached: asked about again rarely)
   }
@@ -651,17 +674,12 @@ uint32_t ViewDependentRefinement::NextRequirement(uint32_t v, uint8_t& stage, ui
       }
       // Events whose row holds u, below v (those below v's previous sibling
       // are displayed already: the sibling needed them).
-      const uint32_t previous = this->LastActiveChild(u);
-      const uint32_t* begin = this->Rev.data() + this->RevOffsets[u];
-      const uint32_t* end = this->Rev.data() + this->RevOffsets[size_t(u) + 1];
-      index = static_cast<uint32_t>(
-        std::upper_bound(begin, end, previous != None ? previous : 0) - this->Rev.data());
+      index = this->Link[v].RevBegin;
       stage = 2;
     }
       // fall through
     case 2:
-      for (const uint32_t end = this->RevOffsets[size_t(u) + 1];
-           index < end && this->Rev[index] < v; ++index)
+      for (const uint32_t end = this->Link[v].RevEnd; index < end; ++index)
       {
         if (!this->Active[this->Rev[index]])
         {
@@ -867,20 +885,16 @@ void ViewDependentRefinement::Split(uint32_t v)
   {
     this->Hold(this->Req[i]);
   }
+  const Links& l = this->Link[v];
+  for (uint32_t i = l.RevBegin; i < l.RevEnd; ++i)
   {
-    const uint32_t* begin = this->Rev.data() + this->RevOffsets[u];
-    const uint32_t* end = this->Rev.data() + this->RevOffsets[size_t(u) + 1];
-    for (const uint32_t* r = std::upper_bound(begin, end, previous != None ? previous : 0);
-         r != end && *r < v; ++r)
-    {
-      this->Hold(*r);
-    }
+    this->Hold(this->Rev[i]);
   }
-  for (uint32_t t = this->BlockOffsets[v]; t < this->BlockOffsets[size_t(v) + 1]; ++t)
+  for (uint32_t t = l.BlockBegin; t < l.BlockEnd; ++t)
   {
     this->AddDisplay(t);
   }
-  for (uint32_t i = this->StarOffsets[v]; i < this->StarOffsets[size_t(v) + 1]; ++i)
+  for (uint32_t i = l.StarBegin; i < l.StarEnd; ++i)
   {
     const uint32_t s = this->StarSlots[i];
     const uint32_t p = this->DisplayPos[s / 3];
@@ -926,20 +940,16 @@ void ViewDependentRefinement::Merge(uint32_t v)
   {
     this->Release(this->Req[i]);
   }
+  const Links& l = this->Link[v];
+  for (uint32_t i = l.RevBegin; i < l.RevEnd; ++i)
   {
-    const uint32_t* begin = this->Rev.data() + this->RevOffsets[u];
-    const uint32_t* end = this->Rev.data() + this->RevOffsets[size_t(u) + 1];
-    for (const uint32_t* r = std::upper_bound(begin, end, last != None ? last : 0);
-         r != end && *r < v; ++r)
-    {
-      this->Release(*r);
-    }
+    this->Release(this->Rev[i]);
   }
-  for (uint32_t t = this->BlockOffsets[v]; t < this->BlockOffsets[size_t(v) + 1]; ++t)
+  for (uint32_t t = l.BlockBegin; t < l.BlockEnd; ++t)
   {
     this->RemoveDisplay(t);
   }
-  for (uint32_t i = this->StarOffsets[v]; i < this->StarOffsets[size_t(v) + 1]; ++i)
+  for (uint32_t i = l.StarBegin; i < l.StarEnd; ++i)
   {
     const uint32_t s = this->StarSlots[i];
     const uint32_t p = this->DisplayPos[s / 3];
@@ -1053,7 +1063,8 @@ const RefinementStatistics& ViewDependentRefinement::UpdateFixedAccuracy()
     const float key = static_cast<float>(this->Evaluate(e.Data));
     if (this->IsWanted(key))
     {
-      this->Keys[e.Id] = CachedKey{ this->Frame, key };
+      this->Link[e.Id].KeyFrame = this->Frame;
+      this->Link[e.Id].Key = key;
       this->Work[this->WorkSize++] = e.Id;
     }
   }
@@ -1180,7 +1191,8 @@ const RefinementStatistics& ViewDependentRefinement::UpdateBudget(
     const float key = static_cast<float>(this->Evaluate(e.Data));
     if (this->IsWanted(key))
     {
-      this->Keys[e.Id] = CachedKey{ this->Frame, key };
+      this->Link[e.Id].KeyFrame = this->Frame;
+      this->Link[e.Id].Key = key;
       split[this->SplitSize++] = HeapEntry{ key, e.Id };
     }
   }
@@ -1277,7 +1289,7 @@ const RefinementStatistics& ViewDependentRefinement::UpdateBudget(
       --this->SplitSize;
       continue;
     }
-    const uint32_t cost = this->BlockOffsets[size_t(s) + 1] - this->BlockOffsets[s];
+    const uint32_t cost = this->Link[s].BlockEnd - this->Link[s].BlockBegin;
     if (this->DisplayCount + cost <= triangleBudget)
     {
       std::pop_heap(split, split + this->SplitSize, SplitOrder());

@@ -204,11 +204,6 @@ private:
     float Key;
     uint32_t Id;
   };
-  struct CachedKey // Priority() of frame Frame (one cache line for both)
-  {
-    uint32_t Frame;
-    float Key;
-  };
 
   template <typename T>
   void InitializeImpl(const TOMMesh& tom, const MergeTree& tree, const T* points);
@@ -272,15 +267,22 @@ private:
   uint32_t T = 0;
   std::vector<uint32_t> Parent;
   std::vector<uint32_t> Children; // of each vertex, sorted by id
-  /// What Split(), Merge() and the candidate lists read of one vertex, in one
-  /// cache line's half (they are reached at random).
-  struct Links
+  /// What Split(), Merge(), the candidate lists and the key cache read of one
+  /// vertex, in one cache line (vertices are reached at random).
+  struct alignas(64) Links
   {
     uint32_t Parent;
     uint32_t ChildBegin, ChildEnd; // Children
     uint32_t ActiveChildren;       // displayed children: a prefix of the sorted ones
     uint32_t SplitPos, MergePos;   // in SplitList, MergeList (UINT32_MAX: absent)
     uint32_t ReqBegin, ReqEnd;     // requirement row (Req)
+    // Events whose row holds the parent, between the previous sibling and the
+    // vertex (Rev; the same at every split and merge: siblings go in order).
+    uint32_t RevBegin, RevEnd;
+    uint32_t BlockBegin, BlockEnd; // triangles born at the split
+    uint32_t StarBegin, StarEnd;   // StarSlots
+    uint32_t KeyFrame;             // Priority() of frame KeyFrame, as a float
+    float Key;
   };
   std::vector<Links> Link;
   std::vector<uint8_t> Active;
@@ -310,7 +312,6 @@ private:
   std::vector<uint32_t> MergeList;
   uint32_t SplitListSize = 0, MergeListSize = 0;
 
-  std::vector<CachedKey> Keys;
   std::vector<uint32_t> Touched;    // TouchFrame stamp: split, merged or left out by this budget update
   uint32_t TouchFrame = 0;          // Frame of the budget update that an interrupted one continues
   bool ContinueUpdate = false;      // the last budget update was interrupted
