@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "MergeTreeAttributes.h"
 
+#include "CollapseEngine.h"
 #include "TOMMesh.h"
 #include "TOMValidator.h"
 
@@ -300,6 +301,45 @@ void SortRow(uint32_t* first, uint32_t* last)
 //------------------------------------------------------------------------------
 namespace
 {
+/// An array of trivial T: in scratch memory when given some large enough
+/// (uninitialised then), else of its own (zeroed).
+template <typename T>
+class WorkArray
+{
+public:
+  WorkArray(size_t n, collapse::ScratchBlocks* scratch)
+    : Size(n)
+  {
+    this->Data = scratch ? scratch->Take<T>(n) : nullptr;
+    if (!this->Data)
+    {
+      this->Own.resize(n);
+      this->Data = this->Own.data();
+    }
+  }
+  WorkArray(const WorkArray&) = delete;
+  WorkArray& operator=(const WorkArray&) = delete;
+
+  T& operator[](size_t i) { return this->Data[i]; }
+  const T& operator[](size_t i) const { return this->Data[i]; }
+  T* data() { return this->Data; }
+  size_t size() const { return this->Size; }
+  /// Grows to n (> size()) entries of its own, keeping the contents.
+  void Grow(size_t n)
+  {
+    std::vector<T> grown(n);
+    std::copy_n(this->Data, this->Size, grown.begin());
+    this->Own.swap(grown);
+    this->Data = this->Own.data();
+    this->Size = n;
+  }
+
+private:
+  T* Data = nullptr;
+  size_t Size = 0;
+  std::vector<T> Own;
+};
+
 void CheckShadingWeight(const MergeTreeErrorOptions& options)
 {
   if (!(options.ShadingWeight >= 0.0) || !std::isfinite(options.ShadingWeight))
@@ -317,7 +357,7 @@ void CheckShadingWeight(const MergeTreeErrorOptions& options)
 // depends on is earlier in the replay, so its final error and depth are known.
 // The TOM must be valid and the points finite.
 MergeTree Replay(const TOMMesh& tom, const double* points, const uint16_t* levels,
-  const MergeTreeErrorOptions& options)
+  const MergeTreeErrorOptions& options, collapse::ScratchBlocks* scratch)
 {
   const double shadingWeight = options.ShadingWeight;
   const bool shading = shadingWeight > 0.0;
@@ -334,7 +374,7 @@ MergeTree Replay(const TOMMesh& tom, const double* points, const uint16_t* level
   tree.ConeCosine.assign(N, -1.0f);
   tree.DependencyOffsets.assign(size_t(N) + 1, 0);
 
-  std::vector<Node> node(N);
+  WorkArray<Node> node(N, scratch);
   for (uint32_t v = 0; v < N; ++v)
   {
     Node& n = node[v];
@@ -358,17 +398,25 @@ MergeTree Replay(const TOMMesh& tom, const double* points, const uint16_t* level
   // v's survivors) at the end, as contiguous corners whose triangles load in
   // parallel (a linked list would chain the misses).
   // ~7 corners per event on igea: grows by doubling past 8.
-  std::vector<uint32_t> fans(3 * size_t(T) + 8 * size_t(N - B) + 64);
+  WorkArray<uint32_t> fans(3 * size_t(T) + 8 * size_t(N - B) + 64, scratch);
   size_t fanEnd = 3 * size_t(T);
   // Leaf cones: every original face normal around the vertex (conservative,
-  // unlike the vertex normal alone); axis = area-weighted mean. Computed per
-  // vertex over its fan, so the cones are written in order; sums run in
-  // triangle order as before, so the result is the same to the bit.
-  std::vector<Cone> cone(N);
-  std::vector<Shade> shade(N);
+  // unlike the vertex normal alone); axis = area-weighted mean, the face
+  // vectors summed in triangle order (by scattering them in triangle order,
+  // as the fans list them), then the widest face normal from it.
+  WorkArray<Cone> cone(N, scratch);
+  WorkArray<Shade> shade(N, scratch);
+  // Replay state: current corner ids of every triangle.
+  WorkArray<Tri> tri(T, scratch);
   {
     constexpr uint32_t Ahead = 8; // triangles whose vertices are prefetched
-    std::vector<Vec> faceArea(T); // cross products: twice the area times the normal
+    auto faceArea = [&P](const uint32_t* c) { // twice the area times the normal
+      return Cross(Sub(P(c[1]), P(c[0])), Sub(P(c[2]), P(c[0])));
+    };
+    for (uint32_t v = 0; v < N; ++v)
+    {
+      cone[v] = { { 0.0, 0.0, 0.0 }, 1.0 }; // sum, smallest cosine
+    }
     for (uint32_t t = 0; t < T; ++t)
     {
       const uint32_t* c = tom.Triangles.data() + 3 * size_t(t);
@@ -377,12 +425,15 @@ MergeTree Replay(const TOMMesh& tom, const double* points, const uint16_t* level
         for (int k = 0; k < 3; ++k)
         {
           Prefetch(&node[c[3 * Ahead + k]]);
+          Prefetch(&cone[c[3 * Ahead + k]]);
         }
       }
-      faceArea[t] = Cross(Sub(P(c[1]), P(c[0])), Sub(P(c[2]), P(c[0])));
+      const Vec a = faceArea(c);
       for (int k = 0; k < 3; ++k)
       {
         ++node[c[k]].FanCount;
+        Vec& sum = cone[c[k]].Axis;
+        sum = { sum.X + a.X, sum.Y + a.Y, sum.Z + a.Z };
       }
     }
     uint32_t fanStart = 0;
@@ -391,6 +442,20 @@ MergeTree Replay(const TOMMesh& tom, const double* points, const uint16_t* level
       node[v].FanStart = fanStart;
       fanStart += node[v].FanCount;
       node[v].FanCount = 0;
+      const Vec sum = cone[v].Axis;
+      const double len = Norm(sum);
+      if (!(len > 0.0))
+      {
+        cone[v] = { { 0.0, 0.0, 1.0 }, Pi }; // no usable face: any direction
+        shade[v] = { { 0.0f, 0.0f, 1.0f }, 0.0f };
+        continue;
+      }
+      const Vec axis = { sum.X / len, sum.Y / len, sum.Z / len };
+      cone[v].Axis = axis;
+      // The vertex normal (area-weighted, as the leaf cone's axis).
+      shade[v] = { { static_cast<float>(axis.X), static_cast<float>(axis.Y),
+                     static_cast<float>(axis.Z) },
+        0.0f };
     }
     for (uint32_t t = 0; t < T; ++t)
     {
@@ -401,6 +466,7 @@ MergeTree Replay(const TOMMesh& tom, const double* points, const uint16_t* level
         {
           const Node& n = node[c[3 * Ahead + k]];
           Prefetch(&fans[n.FanStart + n.FanCount]);
+          Prefetch(&cone[c[3 * Ahead + k]]);
         }
       }
       if (t + 2 * Ahead < T)
@@ -410,67 +476,39 @@ MergeTree Replay(const TOMMesh& tom, const double* points, const uint16_t* level
           Prefetch(&node[c[6 * Ahead + k]]);
         }
       }
+      Tri& r = tri[t];
       for (uint32_t k = 0; k < 3; ++k)
       {
         Node& n = node[c[k]];
         fans[n.FanStart + n.FanCount++] = 3 * t + k;
+        r.Cur[k] = c[k];
+      }
+      r.Dead = 0;
+      const Vec a = faceArea(c);
+      const double area = Norm(a);
+      if (area > 0.0) // zero-area face: no normal to bound
+      {
+        const Vec unit = { a.X / area, a.Y / area, a.Z / area };
+        for (uint32_t k = 0; k < 3; ++k)
+        {
+          Cone& leaf = cone[c[k]];
+          if (leaf.Angle <= 1.0) // still the smallest cosine (Pi: no usable face)
+          {
+            leaf.Angle = std::min(leaf.Angle, Dot(leaf.Axis, unit));
+          }
+        }
       }
     }
     for (uint32_t v = 0; v < N; ++v)
     {
-      if (v + 4 < N)
+      Cone& leaf = cone[v];
+      if (leaf.Angle <= 1.0)
       {
-        const Node& n = node[v + 4];
-        for (uint32_t i = 0; i < n.FanCount; ++i)
-        {
-          Prefetch(&faceArea[fans[n.FanStart + i] / 3]);
-        }
+        const double minCos = leaf.Angle;
+        leaf.Angle =
+          minCos <= -1.0 ? Pi : std::acos(std::max(-1.0, std::min(1.0, minCos))) + ConeSlack;
       }
-      const uint32_t* f = fans.data() + node[v].FanStart;
-      const uint32_t count = node[v].FanCount;
-      Vec sum = { 0.0, 0.0, 0.0 };
-      for (uint32_t i = 0; i < count; ++i)
-      {
-        const Vec& a = faceArea[f[i] / 3];
-        sum = { sum.X + a.X, sum.Y + a.Y, sum.Z + a.Z };
-      }
-      const double len = Norm(sum);
-      if (!(len > 0.0))
-      {
-        cone[v] = { { 0.0, 0.0, 1.0 }, Pi }; // no usable face: any direction
-        shade[v] = { { 0.0f, 0.0f, 1.0f }, 0.0f };
-        continue;
-      }
-      const Vec axis = { sum.X / len, sum.Y / len, sum.Z / len };
-      // The vertex normal (area-weighted, as the leaf cone's axis).
-      shade[v] = { { static_cast<float>(axis.X), static_cast<float>(axis.Y),
-                     static_cast<float>(axis.Z) },
-        0.0f };
-      double minCos = 1.0;
-      for (uint32_t i = 0; i < count; ++i)
-      {
-        const Vec& a = faceArea[f[i] / 3];
-        const double area = Norm(a);
-        if (area > 0.0) // zero-area face: no normal to bound
-        {
-          minCos = std::min(minCos, Dot(axis, Vec{ a.X / area, a.Y / area, a.Z / area }));
-        }
-      }
-      cone[v] = { axis,
-        minCos <= -1.0 ? Pi : std::acos(std::max(-1.0, std::min(1.0, minCos))) + ConeSlack };
     }
-  }
-
-  // Replay state: current corner ids of every triangle.
-  std::vector<Tri> tri(T);
-  for (uint32_t t = 0; t < T; ++t)
-  {
-    Tri& r = tri[t];
-    for (int k = 0; k < 3; ++k)
-    {
-      r.Cur[k] = tom.Triangles[3 * size_t(t) + k];
-    }
-    r.Dead = 0;
   }
 
   // Rows in replay order (v descending), moved to vertex order at the end.
@@ -548,7 +586,7 @@ MergeTree Replay(const TOMMesh& tom, const double* points, const uint16_t* level
     };
     if (fanEnd + nv.FanCount + nu.FanCount > fans.size())
     {
-      fans.resize(2 * (fanEnd + nv.FanCount + nu.FanCount));
+      fans.Grow(2 * (fanEnd + nv.FanCount + nu.FanCount));
     }
     uint32_t* out = fans.data() + fanEnd;
     // v's corners: neighbours, the triangles dying with e_v (they hold u),
@@ -773,14 +811,14 @@ MergeTree ComputeMergeTree(const TOMMesh& tom, const double* points, const uint1
         "ComputeMergeTree: non-finite coordinate of point " + std::to_string(i / 3));
     }
   }
-  return Replay(tom, points, levels, options);
+  return Replay(tom, points, levels, options, nullptr);
 }
 
 //------------------------------------------------------------------------------
 MergeTree detail::ComputeBuiltMergeTree(const TOMMesh& tom, const double* points,
-  const uint16_t* levels, const MergeTreeErrorOptions& options)
+  const uint16_t* levels, const MergeTreeErrorOptions& options, collapse::ScratchBlocks* scratch)
 {
   CheckShadingWeight(options);
-  return Replay(tom, points, levels, options);
+  return Replay(tom, points, levels, options, scratch);
 }
 }

@@ -55,15 +55,20 @@ struct MergeTreeErrorOptions
 TIMECRITICALFILTERSCORE_EXPORT MergeTree ComputeMergeTree(const TOMMesh& tom,
   const double* points, const uint16_t* levels, const MergeTreeErrorOptions& options = {});
 
+namespace collapse
+{
+class ScratchBlocks;
+}
 namespace detail
 {
 /**
  * Internal to FiltersCore: ComputeMergeTree for the TOM that MergeTreeBuilder
  * has just built (valid by construction, finite points), without validating
- * it again. Throws std::invalid_argument on an invalid ShadingWeight.
+ * it again, its working arrays taken from scratch (the builder's finished
+ * ones) where they fit. Throws std::invalid_argument on an invalid ShadingWeight.
  */
 MergeTree ComputeBuiltMergeTree(const TOMMesh& tom, const double* points, const uint16_t* levels,
-  const MergeTreeErrorOptions& options);
+  const MergeTreeErrorOptions& options, collapse::ScratchBlocks* scratch);
 }
 }
 

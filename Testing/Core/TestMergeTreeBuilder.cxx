@@ -3,7 +3,8 @@
 // collapse sequence, the collapses of a level have disjoint regions of
 // influence (checked by replaying the TOM independently of the builder), the
 // tree is balanced, the cost cap keeps the TOM's error near the greedy TOM's,
-// bad input throws, progress and abort work.
+// bad input throws, progress and abort work, the tree is ComputeMergeTree's
+// of the builder's TOM.
 #include "MergeTreeBuilder.h"
 #include "TOMBuilder.h"
 #include "TOMMesh.h"
@@ -161,6 +162,27 @@ void ExpectValidMergeTree(const TriangleMesh& mesh, const MergeTreeBuildResult& 
   }
 }
 
+/// The builder's tree is ComputeMergeTree's of its own TOM to the bit (the
+/// builder skips the validation and computes in its own finished arrays).
+void ExpectSameAsComputeMergeTree(
+  const TriangleMesh& mesh, const MergeTreeBuildResult& r, const MergeTreeErrorOptions& errors)
+{
+  std::vector<double> points;
+  for (uint32_t id : r.TOM.VertexOrder)
+  {
+    points.insert(points.end(), &mesh.Points[3 * size_t(id)], &mesh.Points[3 * size_t(id)] + 3);
+  }
+  const MergeTree t = ComputeMergeTree(r.TOM.Mesh, points.data(), r.Tree.Level.data(), errors);
+  EXPECT_EQ(t.LevelCount, r.Tree.LevelCount);
+  EXPECT_EQ(t.Level, r.Tree.Level);
+  EXPECT_EQ(t.Error, r.Tree.Error);
+  EXPECT_EQ(t.Radius, r.Tree.Radius);
+  EXPECT_EQ(t.ConeAxis, r.Tree.ConeAxis);
+  EXPECT_EQ(t.ConeCosine, r.Tree.ConeCosine);
+  EXPECT_EQ(t.DependencyOffsets, r.Tree.DependencyOffsets);
+  EXPECT_EQ(t.Dependencies, r.Tree.Dependencies);
+}
+
 /// Bounds of a balanced tree over n vertices down to a few: a level removes at
 /// most half of the vertices (a child per parent, parents stay), so at least
 /// log2 levels; Table 1 of the paper reaches ~4.5 log2(n) levels at most with
@@ -228,6 +250,22 @@ TEST(MergeTreeBuilder, NoisyTorusAndSharpCube)
     const MergeTreeBuildResult r = Build(mesh);
     ExpectValidMergeTree(mesh, r);
     ExpectBalanced(r, 6.0);
+  }
+}
+
+TEST(MergeTreeBuilder, TreeIsComputeMergeTreeOfItsTOM)
+{
+  namespace tt = timecritical::testing;
+  for (const TriangleMesh& mesh :
+    { tt::MakeSphere(3), tt::MakeGrid(30, 20), tt::MakeTorus(60, 24, 5, 0.1), tt::MakeCube(8) })
+  {
+    for (double shadingWeight : { 0.0, 1.0 })
+    {
+      MergeTreeBuildOptions options;
+      options.Errors.ShadingWeight = shadingWeight;
+      const MergeTreeBuildResult r = Build(mesh, options);
+      ExpectSameAsComputeMergeTree(mesh, r, options.Errors);
+    }
   }
 }
 
@@ -392,6 +430,8 @@ TEST(MergeTreeBuilderSharedData, Cow)
   const TriangleMesh mesh = timecritical::testing::LoadMesh(cow.Path);
   const MergeTreeBuildResult r = Build(mesh);
   ExpectValidMergeTree(mesh, r);
+  // Degenerate triangles: nearest-triangle ties that decide the shading term.
+  ExpectSameAsComputeMergeTree(mesh, r, MergeTreeBuildOptions().Errors);
   EXPECT_LE(r.TOM.Mesh.BaseVertexCount, 16u);
   ExpectBalanced(r, 7.0);
   std::cout << "cow: " << mesh.NumberOfTriangles() << " triangles, " << r.Tree.LevelCount
