@@ -81,6 +81,10 @@ constexpr double TriangleFloorShare = 0.5;
 /// the safety margin may take: the rest always goes to the objects, so a
 /// large margin coarsens the frame gracefully instead of emptying it.
 constexpr double MaximumMarginShare = 0.5;
+
+/// Weight of coefficients given by SetCostCoefficients() in the online fit,
+/// in frames (a calibration has 14 samples).
+constexpr double GivenCoefficientFrames = 16.0;
 }
 
 struct vtkTimeCriticalRenderer::Internals
@@ -203,11 +207,13 @@ struct vtkTimeCriticalRenderer::Internals
     this->Model.SetFeatureWeights(theta);
   }
 
-  void ResetCalibrator()
+  /// frames: how many frames' worth the current coefficients count for
+  /// (CostModelCalibrator::SetCoefficients).
+  void ResetCalibrator(double frames = 0.0)
   {
     double theta[FeatureCount];
     this->Model.GetFeatureWeights(theta);
-    this->Calibrator.SetCoefficients(theta);
+    this->Calibrator.SetCoefficients(theta, frames);
   }
 
   /// Lower bounds of every coefficient: the physical ones, or a share of
@@ -406,7 +412,9 @@ void vtkTimeCriticalRenderer::SetCostCoefficients(
   in.Model.SetMinimumCoefficients(timecritical::FrameCostModel::Coefficients());
   in.Model.SetCoefficients(c);
   in.SetCoefficientFloors(true);
-  in.ResetCalibrator();
+  // As much as a calibration's samples: the first frames refine them rather
+  // than replace them.
+  in.ResetCalibrator(GivenCoefficientFrames);
   in.Corrector.Reset();
   in.StillCorrector.Reset();
   this->Modified();

@@ -369,7 +369,7 @@ CostModelCalibrator::CostModelCalibrator(
 void CostModelCalibrator::Reset(double priorWeight)
 {
   // R = eps I, b = eps prior: the minimizer is the prior until data arrive.
-  const double eps = priorWeight > 0.0 ? priorWeight : 1e-3;
+  const double eps = priorWeight > 0.0 && std::isfinite(priorWeight) ? priorWeight : 1e-3;
   Estimator& e = this->Main;
   e.Prior = e.Theta;
   e.R.fill(0.0);
@@ -480,7 +480,7 @@ void CostModelCalibrator::Rescale(const double* x)
   }
 }
 
-void CostModelCalibrator::SetCoefficients(const double* theta)
+void CostModelCalibrator::SetCoefficients(const double* theta, double frames)
 {
   for (std::size_t j = 0; j < this->D; ++j)
   {
@@ -488,7 +488,10 @@ void CostModelCalibrator::SetCoefficients(const double* theta)
       std::max(this->Lower[j], std::isfinite(theta[j]) && theta[j] > 0.0 ? theta[j] : 0.0);
     this->Main.Theta[j] = t * (this->FeatureScale[j] > 0.0 ? this->FeatureScale[j] : 1.0);
   }
-  this->Reset(this->Opts.PriorWeight);
+  // The extra weight decays with the forgetting factor like frames' worth of
+  // data; only PriorWeight stays as the constant ridge.
+  const double extra = std::isfinite(frames) && frames > 0.0 ? frames : 0.0;
+  this->Reset(this->Opts.PriorWeight + extra);
 }
 
 void CostModelCalibrator::SetLowerBounds(const double* lower)

@@ -78,9 +78,17 @@ public:
   void SetOptions(const Options& options) { this->Opts = options; }
   const Options& GetOptions() const { return this->Opts; }
 
-  /// Prior coefficients (e.g. defaults), also the current estimate; negative
-  /// or non-finite ones become 0. Forgets the accumulated information.
-  void SetCoefficients(const double* theta);
+  /**
+   * Prior coefficients (e.g. defaults), also the current estimate; negative
+   * or non-finite ones become 0. Forgets the accumulated information.
+   * frames: how much the prior counts, in frames whose features are at the
+   * scales given to the constructor (0: only PriorWeight, which the first
+   * frames override; coefficients
+   * measured elsewhere deserve more, or two or three frames whose features
+   * move together can drive any coefficient anywhere). It fades with the
+   * forgetting factor like data.
+   */
+  void SetCoefficients(const double* theta, double frames = 0.0);
   /**
    * Lower bounds of the coefficients (unscaled, FeatureCount values; null or
    * non-positive: 0). Every estimate honours them: the online fit, a refit

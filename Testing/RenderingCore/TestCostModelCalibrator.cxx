@@ -322,6 +322,36 @@ TEST(CostModelCalibrator, LowerBoundsInBatchFitAndRefit)
   EXPECT_EQ(calibrator.GetLowerBound(FrameCostModel::FeatureTriangles), 0.0);
 }
 
+TEST(CostModelCalibrator, GivenCoefficientsSurviveTheFirstFrames)
+{
+  // Coefficients measured elsewhere (a calibration copied into a new
+  // renderer), then three frames of one view, 30% slower than the model says
+  // (the swap the calibration lacks): their features barely move, so with a
+  // weak prior they put the time on whichever coefficients fit them best
+  // and every other view is mispredicted; a prior worth 16 frames refines.
+  // Typical magnitudes of FrameSource's features (what the renderer passes).
+  const Features scales = { 1.0, 30.0, 265.0, 3e4, 1.4e5 };
+  auto errorElsewhere = [&scales](double frames) {
+    CostModelCalibrator calibrator(D, CostModelCalibrator::Options(), scales.data());
+    calibrator.SetCoefficients(Truth.data(), frames);
+    FrameSource source(31);
+    source.OutlierRate = 0.0;
+    const Features first = source.Next();
+    for (int k = 0; k < 3; ++k)
+    {
+      Features x = first;
+      x[FrameCostModel::FeatureTriangles] *= 1.0 + 0.01 * k;
+      x[FrameCostModel::FeaturePixels] *= 1.0 - 0.01 * k;
+      calibrator.Update(x.data(), 1.3 * FrameSource::Clean(x, Truth));
+    }
+    return PredictionError(calibrator, Truth, 5);
+  };
+  const double weak = errorElsewhere(0.0), given = errorElsewhere(16.0);
+  EXPECT_GT(weak, 0.25); // premise: the weak prior is overridden
+  EXPECT_LT(given, 0.15);
+  EXPECT_LT(given, 0.5 * weak);
+}
+
 TEST(CostModelCalibrator, OnlineRecoversCoefficientsDespiteOutliers)
 {
   const Features prior = { 1e-2, 1e-3, 0.0, 1e-5, 0.0 }; // wrong by 2-5x
