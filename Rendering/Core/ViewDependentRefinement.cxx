@@ -152,6 +152,14 @@ void ViewDependentRefinement::InitializeImpl(
       this->Children[fill[this->Parent[v]]++] = v;
     }
   }
+  std::vector<uint32_t> previousSibling(n, 0); // 0: none
+  for (uint32_t w = 0; w < n; ++w)
+  {
+    for (uint32_t i = childOffsets[w] + 1; i < childOffsets[size_t(w) + 1]; ++i)
+    {
+      previousSibling[this->Children[i]] = this->Children[i - 1];
+    }
+  }
 
   // Blocks: triangles appearing with each split (contiguous in a TOM).
   const TOMTraversal traversal(tom);
@@ -258,11 +266,12 @@ void ViewDependentRefinement::InitializeImpl(
       }
     }
   }
-  this->Nodes.assign(n, Node{});
-  for (uint32_t v = 0; v < n; ++v)
+  this->Nodes.assign(n - b, Node{});
+  for (uint32_t slot = 0; slot < n - b; ++slot)
   {
-    Node& node = this->Nodes[v];
-    const uint32_t c = v < b ? v : this->Parent[v];
+    const uint32_t v = this->Children[slot];
+    Node& node = this->Nodes[slot];
+    const uint32_t c = this->Parent[v];
     for (int i = 0; i < 3; ++i)
     {
       node.Center[i] = static_cast<float>(points[3 * size_t(c) + i]);
@@ -282,30 +291,44 @@ void ViewDependentRefinement::InitializeImpl(
     l.Parent = this->Parent[v];
     l.ChildBegin = childOffsets[v];
     l.ChildEnd = childOffsets[size_t(v) + 1];
-    l.ReqBegin = this->ReqOffsets[v];
-    l.ReqEnd = this->ReqOffsets[size_t(v) + 1];
     l.BlockBegin = this->BlockOffsets[v];
     l.BlockEnd = this->BlockOffsets[size_t(v) + 1];
     l.StarBegin = this->StarOffsets[v];
     l.StarEnd = this->StarOffsets[size_t(v) + 1];
-    l.RevBegin = l.RevEnd = 0;
+    l.Slot = None;
+    l.Spare = 0;
     l.KeyFrame = 0;
     l.Key = 0.0f;
   }
-  for (uint32_t w = 0; w < n; ++w)
+  for (uint32_t slot = 0; slot < n - b; ++slot)
   {
-    const uint32_t* begin = this->Rev.data() + this->RevOffsets[w];
-    const uint32_t* end = this->Rev.data() + this->RevOffsets[size_t(w) + 1];
-    uint32_t previous = 0;
-    for (uint32_t i = childOffsets[w]; i < childOffsets[size_t(w) + 1]; ++i)
-    {
-      const uint32_t v = this->Children[i];
-      const uint32_t* first = std::upper_bound(begin, end, previous);
-      this->Link[v].RevBegin = static_cast<uint32_t>(first - this->Rev.data());
-      this->Link[v].RevEnd = static_cast<uint32_t>(std::lower_bound(first, end, v) - this->Rev.data());
-      previous = v;
-    }
+    this->Link[this->Children[slot]].Slot = slot;
   }
+  // Needs: per vertex, the events of Rev[parent] between its previous sibling
+  // and it, then its row; the full rows and their transpose are dropped.
+  this->Needs.clear();
+  this->Needs.reserve(this->Req.size() + this->Rev.size());
+  for (uint32_t v = 0; v < n; ++v)
+  {
+    Links& l = this->Link[v];
+    l.NeedBegin = static_cast<uint32_t>(this->Needs.size());
+    if (v >= b)
+    {
+      const uint32_t u = this->Parent[v];
+      const uint32_t* begin = this->Rev.data() + this->RevOffsets[u];
+      const uint32_t* end = this->Rev.data() + this->RevOffsets[size_t(u) + 1];
+      // Previous sibling: the child before v in Children (0 for the first).
+      const uint32_t* first = std::upper_bound(begin, end, previousSibling[v]);
+      this->Needs.insert(this->Needs.end(), first, std::lower_bound(first, end, v));
+      this->Needs.insert(this->Needs.end(), this->Req.begin() + this->ReqOffsets[v],
+        this->Req.begin() + this->ReqOffsets[size_t(v) + 1]);
+    }
+    l.NeedEnd = static_cast<uint32_t>(this->Needs.size());
+  }
+  std::vector<uint32_t>().swap(this->Req);
+  std::vector<uint32_t>().swap(this->Rev);
+  std::vector<uint32_t>().swap(this->ReqOffsets);
+  std::vector<uint32_t>().swap(this->RevOffsets);
   this->Active.assign(n, 0);
   this->Holds.assign(n, 0);
   this->Display.assign(3 * size_t(nt), 0);
@@ -424,7 +447,8 @@ void ViewDependentRefinement::PrepareView()
 //------------------------------------------------------------------------------
 double ViewDependentRefinement::Priority(uint32_t v) const
 {
-  return this->Evaluate(this->Nodes[v]);
+  const uint32_t slot = this->Link[v].Slot;
+  return slot != None ? this->Evaluate(this->Nodes[slot]) : 0.0; // a base vertex has no event
 }
 
 // Not inlined: every priority comes from the same machine code (no
@@ -615,11 +639,18 @@ float ViewDependentRefinement::Key(uint32_t v)
 
 bool ViewDependentRefinement::Wanted(uint32_t v)
 {
-  if (this->Link[v].KeyFrame != this->Frame && this->SurelyUnwanted(this->Nodes[v]))
+  const Links& l = this->Link[v];
+  if (l.KeyFrame != this->Frame && l.Slot != None && this->SurelyUnwanted(this->Nodes[l.Slot]))
   {
     return false; // cheaper than Key() (not cached: asked about again rarely)
   }
   return this->IsWanted(this->Key(v));
+}
+
+bool ViewDependentRefinement::WantedNode(const Node& node) const
+{
+  // What Wanted() finds for the node, without the cache.
+  return !this->SurelyUnwanted(node) && this->IsWanted(static_cast<float>(this->Evaluate(node)));
 }
 
 //------------------------------------------------------------------------------
@@ -672,35 +703,24 @@ uint32_t ViewDependentRefinement::NextRequirement(uint32_t v, uint8_t& stage, ui
       {
         return sibling; // an earlier-split sibling (smaller id)
       }
-      // Events whose row holds u, below v (those below v's previous sibling
-      // are displayed already: the sibling needed them).
-      index = this->Link[v].RevBegin;
-      stage = 2;
-    }
-      // fall through
-    case 2:
-      for (const uint32_t end = this->Link[v].RevEnd; index < end; ++index)
-      {
-        if (!this->Active[this->Rev[index]])
-        {
-          return this->Rev[index];
-        }
-      }
       // A displayed vertex that needs v (e.g. a row vertex's child above v):
       // cannot happen on a closed front; kept as a safe refusal.
       if (this->Holds[v] > 0)
       {
         return None;
       }
-      index = this->Link[v].ReqBegin;
-      stage = 3;
+      // The events whose row holds u below v (those below v's previous
+      // sibling are displayed already: the sibling needed them), then v's row.
+      index = this->Link[v].NeedBegin;
+      stage = 2;
+    }
       // fall through
     default:
-      for (const uint32_t end = this->Link[v].ReqEnd; index < end; ++index)
+      for (const uint32_t end = this->Link[v].NeedEnd; index < end; ++index)
       {
-        if (!this->Active[this->Req[index]])
+        if (!this->Active[this->Needs[index]])
         {
-          return this->Req[index];
+          return this->Needs[index];
         }
       }
       return v;
@@ -784,8 +804,10 @@ void ViewDependentRefinement::RemoveDisplay(uint32_t t)
 
 void ViewDependentRefinement::RefreshSplitCandidate(uint32_t w)
 {
-  const uint32_t c = this->Active[w] ? this->NextChild(w) : None;
-  uint32_t& p = this->Link[w].SplitPos;
+  Links& l = this->Link[w];
+  const uint32_t slot = l.ChildBegin + l.ActiveChildren; // the next child's
+  const uint32_t c = this->Active[w] && slot < l.ChildEnd ? this->Children[slot] : None;
+  uint32_t& p = l.SplitPos;
   if (c != None)
   {
     if (p == None)
@@ -796,7 +818,11 @@ void ViewDependentRefinement::RefreshSplitCandidate(uint32_t w)
     {
       return;
     }
-    this->SplitList[p] = Candidate{ this->Nodes[c], c, w };
+    const Candidate& e = this->SplitList[p] = Candidate{ this->Nodes[slot], c, w };
+    if (this->Mode == UpdateMode::Fixed && this->WantedNode(e.Data))
+    {
+      this->Work[this->WorkSize++] = c; // a new candidate of the running update
+    }
   }
   else if (p != None)
   {
@@ -881,14 +907,10 @@ void ViewDependentRefinement::Split(uint32_t v)
   {
     this->Hold(previous);
   }
-  for (uint32_t i = this->Link[v].ReqBegin, end = this->Link[v].ReqEnd; i < end; ++i)
-  {
-    this->Hold(this->Req[i]);
-  }
   const Links& l = this->Link[v];
-  for (uint32_t i = l.RevBegin; i < l.RevEnd; ++i)
+  for (uint32_t i = l.NeedBegin; i < l.NeedEnd; ++i)
   {
-    this->Hold(this->Rev[i]);
+    this->Hold(this->Needs[i]);
   }
   for (uint32_t t = l.BlockBegin; t < l.BlockEnd; ++t)
   {
@@ -906,13 +928,7 @@ void ViewDependentRefinement::Split(uint32_t v)
   this->RefreshSplitCandidate(u);
   this->RefreshSplitCandidate(v);
   this->RefreshMergeCandidate(v); // nothing needs it yet
-  if (this->Mode == UpdateMode::Fixed)
-  {
-    // New split candidates: v's next sibling and v's first child.
-    this->Work[this->WorkSize++] = this->NextChild(u);
-    this->Work[this->WorkSize++] = this->NextChild(v);
-  }
-  else if (this->Mode == UpdateMode::Budget)
+  if (this->Mode == UpdateMode::Budget)
   {
     this->Touched[v] = this->TouchFrame;
     this->SplitLog[this->SplitLogSize++] = v;
@@ -936,14 +952,10 @@ void ViewDependentRefinement::Merge(uint32_t v)
   {
     this->Release(last);
   }
-  for (uint32_t i = this->Link[v].ReqBegin, end = this->Link[v].ReqEnd; i < end; ++i)
-  {
-    this->Release(this->Req[i]);
-  }
   const Links& l = this->Link[v];
-  for (uint32_t i = l.RevBegin; i < l.RevEnd; ++i)
+  for (uint32_t i = l.NeedBegin; i < l.NeedEnd; ++i)
   {
-    this->Release(this->Rev[i]);
+    this->Release(this->Needs[i]);
   }
   for (uint32_t t = l.BlockBegin; t < l.BlockEnd; ++t)
   {
@@ -1048,35 +1060,27 @@ const RefinementStatistics& ViewDependentRefinement::UpdateFixedAccuracy()
   // the splits it needs; each split offers its new candidates.
   this->Mode = UpdateMode::Fixed;
   this->WorkSize = 0;
-  // The candidates (next child of each display vertex) are decided here, in
-  // list order; only the wanted ones are kept (the view alone decides, so
-  // this is what the lazy check at the pop would find).
-  // Straight from the list's node copies (a sequential read; what Wanted()
-  // would find), caching only the wanted keys, asked for again at the pop.
+  // The candidates (next child of each display vertex) are decided here,
+  // straight from the list's node copies (a sequential read); only the wanted
+  // ones are kept. The view alone decides, and only splits happen until the
+  // merges, so a kept candidate stays its owner's next child until it is
+  // split: at the pop, Active[c] is all there is to check. Each split offers
+  // its new candidates the same way (RefreshSplitCandidate()).
   for (uint32_t i = 0; i < this->SplitListSize; ++i)
   {
     const Candidate& e = this->SplitList[i];
-    if (this->SurelyUnwanted(e.Data))
+    if (this->WantedNode(e.Data))
     {
-      continue;
-    }
-    const float key = static_cast<float>(this->Evaluate(e.Data));
-    if (this->IsWanted(key))
-    {
-      this->Link[e.Id].KeyFrame = this->Frame;
-      this->Link[e.Id].Key = key;
       this->Work[this->WorkSize++] = e.Id;
     }
   }
   while (this->WorkSize > 0)
   {
     const uint32_t c = this->Work[--this->WorkSize];
-    if (c == None || this->Active[c] || !this->Active[this->Link[c].Parent] ||
-      this->NextChild(this->Link[c].Parent) != c || !this->Wanted(c))
+    if (!this->Active[c])
     {
-      continue;
+      this->ForceSplit(c);
     }
-    this->ForceSplit(c);
   }
   this->Mode = UpdateMode::None;
   this->MergeUnwanted();

@@ -217,6 +217,7 @@ private:
   /// Priority(v), computed once per update.
   float Key(uint32_t v);
   bool Wanted(uint32_t v);
+  bool WantedNode(const Node& node) const; // Wanted() of a node (a copy), uncached
   /// Whether a node with this key is split (or kept) at the pixel threshold.
   bool IsWanted(float key) const
   {
@@ -275,11 +276,10 @@ private:
     uint32_t ChildBegin, ChildEnd; // Children
     uint32_t ActiveChildren;       // displayed children: a prefix of the sorted ones
     uint32_t SplitPos, MergePos;   // in SplitList, MergeList (UINT32_MAX: absent)
-    uint32_t ReqBegin, ReqEnd;     // requirement row (Req)
-    // Events whose row holds the parent, between the previous sibling and the
-    // vertex (Rev; the same at every split and merge: siblings go in order).
-    uint32_t RevBegin, RevEnd;
+    uint32_t NeedBegin, NeedEnd;   // Needs
     uint32_t BlockBegin, BlockEnd; // triangles born at the split
+    uint32_t Slot; // index in Children and Nodes (UINT32_MAX: a base vertex)
+    uint32_t Spare;
     uint32_t StarBegin, StarEnd;   // StarSlots
     uint32_t KeyFrame;             // Priority() of frame KeyFrame, as a float
     float Key;
@@ -287,9 +287,14 @@ private:
   std::vector<Links> Link;
   std::vector<uint8_t> Active;
   // Requirement rows (see the .cxx): vertices that must be displayed, with no
-  // displayed child above v, while v is; and their transpose.
+  // displayed child above v, while v is; and their transpose (Initialize() only).
   std::vector<uint32_t> ReqOffsets, Req;
   std::vector<uint32_t> RevOffsets, Rev;
+  // What each vertex needs besides its parent and previous sibling, in one run
+  // (one cache miss): the events whose row holds its parent, between its
+  // previous sibling and it (the same at every split: siblings go in order),
+  // then its row.
+  std::vector<uint32_t> Needs;
   // Displayed vertices that need the vertex: its displayed children, its next
   // sibling, the displayed vertices whose row holds it, and the events whose
   // row vertex has a displayed child above them (kept by Split() and Merge();
@@ -298,7 +303,7 @@ private:
   std::vector<uint32_t> BlockOffsets; // triangles of block v: [BlockOffsets[v], BlockOffsets[v+1])
   std::vector<uint32_t> BirthCorners; // corners of each triangle when it appears
   std::vector<uint32_t> StarOffsets, StarSlots; // slots 3t+k that turn from parent to v at split
-  std::vector<Node> Nodes;
+  std::vector<Node> Nodes; // of the events, in Children's order (siblings adjacent)
 
   std::vector<uint32_t> Display;   // 3 ids per display triangle
   std::vector<uint32_t> DisplayId; // TOM triangle of each display triangle
@@ -320,7 +325,7 @@ private:
   std::vector<uint32_t> Stack; // forced splits, and where each one's scan stands
   std::vector<uint8_t> StackStage;
   std::vector<uint32_t> StackIndex;
-  std::vector<uint32_t> Work;  // fixed-accuracy split candidates
+  std::vector<uint32_t> Work;  // wanted fixed-accuracy split candidates
   uint32_t WorkSize = 0;
   // MergeUnwanted()'s queue, finest first: a bit per vertex, popped by a
   // downward scan (every push is below the last pop, so one sweep suffices).
