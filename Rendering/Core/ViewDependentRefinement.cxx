@@ -47,6 +47,7 @@ struct ViewDependentRefinement::Candidate
   Node Data;
   uint32_t Id;
   uint32_t Owner;
+  double WakeAt; // surely unwanted while Odometer < WakeAt (see Evaluate())
 };
 
 ViewDependentRefinement::ViewDependentRefinement() = default;
@@ -442,6 +443,32 @@ void ViewDependentRefinement::PrepareView()
   this->UnwantedScale = this->MinimumFactor > 0.0 && this->PixelThreshold > 0.0
     ? this->PixelsPerUnit / (this->MinimumFactor * this->PixelThreshold * (1.0 - 1e-6))
     : 0.0;
+
+  // Sleeping candidates (Candidate::WakeAt) stay so while the eye has moved
+  // less than their radius since; the odometer sums the eye's moves (at least
+  // the distance between any two of its positions). Anything else that their
+  // decision depends on (but the frustum and the near plane, which can only
+  // make them more unwanted) wakes them all when it changes.
+  const double settings[] = { this->PixelThreshold, this->PixelsPerUnit,
+    v.Parallel ? 1.0 : 0.0, this->BackFaceSimplification ? 1.0 : 0.0,
+    this->SilhouetteRefinement ? this->SilhouetteFactor : -1.0,
+    this->HighlightRefinement ? this->HighlightFactor : -1.0, this->LightX, this->LightY,
+    this->LightZ };
+  static_assert(sizeof(settings) == sizeof(this->SleepSettings), "one value per setting");
+  if (std::memcmp(settings, this->SleepSettings, sizeof(settings)) != 0)
+  {
+    std::memcpy(this->SleepSettings, settings, sizeof(settings));
+    for (uint32_t i = 0; i < this->SplitListSize; ++i)
+    {
+      this->SplitList[i].WakeAt = -1.0;
+    }
+  }
+  const double mx = this->EyeX - this->LastEye[0], my = this->EyeY - this->LastEye[1],
+               mz = this->EyeZ - this->LastEye[2];
+  this->Odometer += std::sqrt(mx * mx + my * my + mz * mz);
+  this->LastEye[0] = this->EyeX;
+  this->LastEye[1] = this->EyeY;
+  this->LastEye[2] = this->EyeZ;
 }
 
 //------------------------------------------------------------------------------
@@ -454,8 +481,12 @@ double ViewDependentRefinement::Priority(uint32_t v) const
 // Not inlined: every priority comes from the same machine code (no
 // context-dependent contraction), so a node gets the same key from the sweep's
 // copy as from Nodes.
-TIMECRITICAL_NOINLINE double ViewDependentRefinement::Evaluate(const Node& node) const
+TIMECRITICAL_NOINLINE double ViewDependentRefinement::Evaluate(const Node& node, double* wake) const
 {
+  if (wake != nullptr)
+  {
+    *wake = 0.0;
+  }
   const double cx = node.Center[0], cy = node.Center[1], cz = node.Center[2];
   const double r = node.Radius;
   if (this->PlaneCount > 0)
@@ -478,7 +509,7 @@ TIMECRITICAL_NOINLINE double ViewDependentRefinement::Evaluate(const Node& node)
       return -1.0;
     }
   }
-  double dx, dy, dz, sinB = 0.0, cosB = 1.0, projected;
+  double dx, dy, dz, sinB = 0.0, cosB = 1.0, projected, dist = 0.0;
   if (this->View.Parallel)
   {
     dx = this->DirX;
@@ -491,9 +522,13 @@ TIMECRITICAL_NOINLINE double ViewDependentRefinement::Evaluate(const Node& node)
     dx = cx - this->EyeX;
     dy = cy - this->EyeY;
     dz = cz - this->EyeZ;
-    const double dist = std::sqrt(dx * dx + dy * dy + dz * dz);
+    dist = std::sqrt(dx * dx + dy * dy + dz * dz);
     if (!(node.Error > 0.0f))
     {
+      if (wake != nullptr && this->PixelThreshold > 0.0)
+      {
+        *wake = std::numeric_limits<double>::infinity(); // key 0 until the settings change
+      }
       return 0.0;
     }
     // The node's surface is at least dist - r away, and nothing nearer than
@@ -512,13 +547,20 @@ TIMECRITICAL_NOINLINE double ViewDependentRefinement::Evaluate(const Node& node)
         (this->HighlightRefinement ? this->HighlightFactor : 1.0);
       return f > 0.0 ? projected / f : std::numeric_limits<double>::infinity();
     }
+    // cos(beta) = sqrt(dist^2 - r^2) / dist: both roots at once (a shorter
+    // chain of slow operations than the root of 1 - sin^2).
+    const double tangent = std::sqrt(std::max(0.0, dx * dx + dy * dy + dz * dz - r * r));
     const double inverse = 1.0 / dist;
     dx *= inverse;
     dy *= inverse;
     dz *= inverse;
     sinB = r * inverse;
-    cosB = std::sqrt(1.0 - sinB * sinB);
+    cosB = tangent * inverse;
   }
+  // Sleep (see WakeRadius()): the angular margins that keep the node culled,
+  // or off silhouettes and highlights, as sines; < 0: none needed.
+  double cosPsi = 0.0, cosAngle = 0.0, sinAngle = 0.0; // of the highlight test
+  bool marginHighlightNeeded = false;
   double factor = 1.0;
   // Angles to the view directions of the sphere: theta (cone) + beta (sphere),
   // by their cosines and sines (sum formulas instead of acos/asin/cos).
@@ -531,6 +573,12 @@ TIMECRITICAL_NOINLINE double ViewDependentRefinement::Evaluate(const Node& node)
   {
     if (this->BackFaceSimplification && cosA > sinTB)
     {
+      if (wake != nullptr && !this->View.Parallel)
+      {
+        // sin(90 - (theta + beta) - alpha), alpha = angle(axis, d)
+        const double margin = cosTB * cosA - sinTB * std::sqrt(std::max(0.0, 1.0 - cosA * cosA));
+        *wake = this->WakeRadius(dist, r, margin, -1.0);
+      }
       return -1.0; // every normal faces away from every view direction
     }
     silhouette = std::abs(cosA) <= sinTB;
@@ -539,6 +587,7 @@ TIMECRITICAL_NOINLINE double ViewDependentRefinement::Evaluate(const Node& node)
   {
     factor *= this->SilhouetteFactor;
   }
+  const bool marginSilhouetteNeeded = this->SilhouetteRefinement && !silhouette;
   if (this->HighlightRefinement)
   {
     // Reflection vectors of the light over the cone lie within 2 theta of the
@@ -549,15 +598,17 @@ TIMECRITICAL_NOINLINE double ViewDependentRefinement::Evaluate(const Node& node)
     if (!highlight)
     {
       const double c2 = 2.0 * c * c - 1.0, s2 = 2.0 * s * c; // 2 theta < 180 degrees
-      const double cosAngle = c2 * cosB - s2 * sinB;
-      const double sinAngle = s2 * cosB + c2 * sinB;
+      cosAngle = c2 * cosB - s2 * sinB;
+      sinAngle = s2 * cosB + c2 * sinB;
       highlight = sinAngle <= 0.0 && cosAngle < 0.0;
       if (!highlight)
       {
         const double aL = node.Axis[0] * this->LightX + node.Axis[1] * this->LightY +
           node.Axis[2] * this->LightZ;
         const double dL = this->LightX * dx + this->LightY * dy + this->LightZ * dz;
-        highlight = dL - 2.0 * aL * cosA >= cosAngle; // -R.d >= cos(2 theta + beta)
+        cosPsi = dL - 2.0 * aL * cosA; // -R.d
+        highlight = cosPsi >= cosAngle; // -R.d >= cos(2 theta + beta)
+        marginHighlightNeeded = !highlight;
       }
     }
     if (highlight)
@@ -565,9 +616,54 @@ TIMECRITICAL_NOINLINE double ViewDependentRefinement::Evaluate(const Node& node)
       factor *= this->HighlightFactor;
     }
   }
-  return factor > 0.0 ? projected / factor : std::numeric_limits<double>::infinity();
+  const double key = factor > 0.0 ? projected / factor : std::numeric_limits<double>::infinity();
+  if (wake != nullptr && !this->View.Parallel && this->PixelThreshold > 0.0 && factor > 0.0 &&
+    !this->IsWanted(static_cast<float>(key)))
+  {
+    // Unwanted while the projected error over this factor stays below tau
+    // (the near plane only lowers it) and the factor cannot drop.
+    const double reach = node.Error * this->PixelsPerUnit /
+      (factor * this->PixelThreshold * (1.0 - 1e-6));
+    const double room = dist - r - reach;
+    if (room > 0.0)
+    {
+      // sin(|90 - alpha| - (theta + beta)), sin(psi - (2 theta + beta)).
+      const double sinA = std::sqrt(std::max(0.0, 1.0 - cosA * cosA));
+      const double clamped = std::max(-1.0, std::min(1.0, cosPsi));
+      const double marginSilhouette =
+        marginSilhouetteNeeded ? std::abs(cosA) * cosTB - sinA * sinTB : -1.0;
+      const double marginHighlight = marginHighlightNeeded
+        ? std::sqrt(1.0 - clamped * clamped) * cosAngle - clamped * sinAngle
+        : -1.0;
+      *wake = std::min(room, this->WakeRadius(dist, r, marginSilhouette, marginHighlight));
+    }
+  }
+  return key;
 }
 
+double ViewDependentRefinement::WakeRadius(
+  double dist, double r, double margin0, double margin1) const
+{
+  // An eye move by rho <= (dist - r) / 2 turns the direction to the centre by
+  // at most asin(rho / dist) <= pi/3 rho / dist (asin is convex and rho / dist
+  // <= 1/2, asin(1/2) = pi/6) and widens beta = asin(r / dist)
+  // by at most rho r / (x sqrt(x^2 - r^2)), x = (dist + r) / 2 (mean value
+  // theorem); the sum stays below an angular margin m while it stays below
+  // sin m <= m. A relative 1e-6 covers the rounding of the decision itself
+  // and of a float axis that is not quite unit.
+  constexpr double Slack = 1e-6;
+  const double x = 0.5 * (dist + r);
+  const double k = Pi / (3.0 * dist) + r / (x * std::sqrt((dist - r) * (dist + 3.0 * r) * 0.25));
+  double rho = 0.5 * (dist - r);
+  for (const double m : { margin0, margin1 })
+  {
+    if (m >= 0.0) // < 0: no margin needed
+    {
+      rho = std::min(rho, (m - Slack) / k);
+    }
+  }
+  return rho > 0.0 ? rho * (1.0 - Slack) : 0.0;
+}
 
 bool ViewDependentRefinement::SurelyUnwanted(const Node& node) const
 {
@@ -818,7 +914,7 @@ void ViewDependentRefinement::RefreshSplitCandidate(uint32_t w)
     {
       return;
     }
-    const Candidate& e = this->SplitList[p] = Candidate{ this->Nodes[slot], c, w };
+    const Candidate& e = this->SplitList[p] = Candidate{ this->Nodes[slot], c, w, -1.0 };
     if (this->Mode == UpdateMode::Fixed && this->WantedNode(e.Data))
     {
       this->Work[this->WorkSize++] = c; // a new candidate of the running update
@@ -1068,10 +1164,19 @@ const RefinementStatistics& ViewDependentRefinement::UpdateFixedAccuracy()
   // its new candidates the same way (RefreshSplitCandidate()).
   for (uint32_t i = 0; i < this->SplitListSize; ++i)
   {
-    const Candidate& e = this->SplitList[i];
-    if (this->WantedNode(e.Data))
+    Candidate& e = this->SplitList[i];
+    if (e.WakeAt > this->Odometer || this->SurelyUnwanted(e.Data))
+    {
+      continue;
+    }
+    double wake;
+    if (this->IsWanted(static_cast<float>(this->Evaluate(e.Data, &wake))))
     {
       this->Work[this->WorkSize++] = e.Id;
+    }
+    else
+    {
+      e.WakeAt = this->Odometer + wake;
     }
   }
   while (this->WorkSize > 0)
@@ -1187,13 +1292,18 @@ const RefinementStatistics& ViewDependentRefinement::UpdateBudget(
   this->SplitSize = 0;
   for (uint32_t i = 0; i < this->SplitListSize; ++i)
   {
-    const Candidate& e = this->SplitList[i];
-    if (this->SurelyUnwanted(e.Data))
+    Candidate& e = this->SplitList[i];
+    if (e.WakeAt > this->Odometer || this->SurelyUnwanted(e.Data))
     {
       continue;
     }
-    const float key = static_cast<float>(this->Evaluate(e.Data));
-    if (this->IsWanted(key))
+    double wake;
+    const float key = static_cast<float>(this->Evaluate(e.Data, &wake));
+    if (!this->IsWanted(key))
+    {
+      e.WakeAt = this->Odometer + wake;
+    }
+    else
     {
       this->Link[e.Id].KeyFrame = this->Frame;
       this->Link[e.Id].Key = key;

@@ -212,7 +212,12 @@ private:
   void NextFrame();
   /// Projected error of event v over its local threshold factor; negative when culled.
   double Priority(uint32_t v) const;
-  double Evaluate(const Node& node) const; // Priority() of a node
+  /// Priority() of a node; with `wake`, also how far the eye may move (the
+  /// settings, light and viewport staying) before an unwanted node can be
+  /// wanted (0: no such bound).
+  double Evaluate(const Node& node, double* wake = nullptr) const;
+  /// Eye move that keeps angular margins (sines; < 0: none) at dist, radius r.
+  double WakeRadius(double dist, double r, double margin0, double margin1) const;
 
   /// Priority(v), computed once per update.
   float Key(uint32_t v);
@@ -362,6 +367,11 @@ private:
   double PixelsPerUnit = 1.0; // parallel: per world unit; perspective: times distance
   double MinimumFactor = 1.0; // smallest threshold factor (silhouette, highlight)
   double UnwantedScale = 0.0; // PixelsPerUnit / (MinimumFactor * tau * (1 - 1e-6)); 0: none
+  // Candidate sleep (see PrepareView()): the eye's path length, its last
+  // position, and the settings the sleeping candidates were decided with.
+  double Odometer = 0.0;
+  double LastEye[3] = { 0.0, 0.0, 0.0 };
+  double SleepSettings[9] = {};
   // Frustum planes as x, y, z, w rows of 8 (unused ones never cull): one
   // branch-free, vectorizable test per node.
   int PlaneCount = 0;

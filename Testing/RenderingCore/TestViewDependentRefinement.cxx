@@ -534,6 +534,98 @@ TEST(ViewDependentRefinement, FixedAccuracyIncrementalEqualsFromScratch)
   EXPECT_GE(views, 60);
 }
 
+// A smooth camera path (a few degrees and percent of zoom per frame, as a
+// renderer moves): unwanted candidates sleep while the eye stays within their
+// margins, so this checks that the incremental front still equals the one from
+// scratch frame by frame, with silhouettes, highlights and six frustum planes,
+// and when the light, the viewport or tau change on the way.
+TEST(ViewDependentRefinement, SmoothPathIncrementalEqualsFromScratch)
+{
+  const double pi = 3.14159265358979323846;
+  int frames = 0;
+  for (const auto& fp : ClosedFixtures())
+  {
+    const Fixture& f = *fp;
+    ViewDependentRefinement incremental, scratch;
+    incremental.Initialize(f.Mesh, f.Tree, f.Points.data());
+    scratch.Initialize(f.Mesh, f.Tree, f.Points.data());
+    std::mt19937 rng(59);
+    std::uniform_real_distribution<double> uniform(0.0, 1.0);
+    double angle = 0.0, zoom = 1.0;
+    for (int i = 0; i < 40 && !::testing::Test::HasFatalFailure(); ++i)
+    {
+      angle += (1.0 + 4.0 * uniform(rng)) * pi / 180;
+      zoom = std::min(2.5, std::max(0.6, zoom * (1.0 + 0.08 * (2 * uniform(rng) - 1))));
+      RefinementView view;
+      const double distance = 1.8 * f.Size * zoom;
+      view.Eye[0] = f.Center[0] + distance * std::cos(angle);
+      view.Eye[1] = f.Center[1] + 0.4 * distance * std::sin(0.7 * angle);
+      view.Eye[2] = f.Center[2] + distance * std::sin(angle);
+      double d[3], right[3], up[3];
+      for (int k = 0; k < 3; ++k)
+      {
+        view.Direction[k] = d[k] = f.Center[k] - view.Eye[k];
+      }
+      const double dl = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+      for (double& x : d)
+      {
+        x /= dl;
+      }
+      const double rl = std::sqrt(d[0] * d[0] + d[2] * d[2]);
+      right[0] = -d[2] / rl;
+      right[1] = 0.0;
+      right[2] = d[0] / rl;
+      up[0] = right[1] * d[2] - right[2] * d[1];
+      up[1] = right[2] * d[0] - right[0] * d[2];
+      up[2] = right[0] * d[1] - right[1] * d[0];
+      // Four side planes at 15 degrees, near and far.
+      const double ch = std::cos(15 * pi / 180), sh = std::sin(15 * pi / 180);
+      view.NumberOfFrustumPlanes = 6;
+      for (int p = 0; p < 6; ++p)
+      {
+        double n[3];
+        for (int k = 0; k < 3; ++k)
+        {
+          const double side = p < 2 ? right[k] : up[k];
+          n[k] = p < 4 ? (p % 2 == 0 ? ch : -ch) * side + sh * d[k] : (p == 4 ? d[k] : -d[k]);
+          view.FrustumPlanes[p][k] = n[k];
+        }
+        const double offset = p < 4 ? 0.0 : (p == 4 ? -0.1 * f.Size : 10.0 * f.Size);
+        view.FrustumPlanes[p][3] =
+          offset - (n[0] * view.Eye[0] + n[1] * view.Eye[1] + n[2] * view.Eye[2]);
+      }
+      view.NearDistance = 0.1 * f.Size;
+      // A fixed light, turned once; the viewport and tau change once.
+      const double light = i < 25 ? -1.2 : 0.4;
+      view.LightDirection[0] = std::sin(light);
+      view.LightDirection[1] = 0.6;
+      view.LightDirection[2] = std::cos(light);
+      view.ViewportHeight = i < 30 ? 512 : 700;
+      for (ViewDependentRefinement* r : { &incremental, &scratch })
+      {
+        r->SetView(view);
+        r->SetPixelThreshold(i < 12 ? 1.0 : 0.7);
+        r->SetBackFaceSimplification(true);
+        r->SetSilhouetteRefinement(true);
+        r->SetSilhouetteFactor(0.25);
+        r->SetHighlightRefinement(true);
+        r->SetHighlightFactor(0.5);
+      }
+      const RefinementStatistics s = incremental.UpdateFixedAccuracy();
+      scratch.Reset();
+      scratch.UpdateFixedAccuracy();
+      EXPECT_EQ(s.BlockedSplits, 0u);
+      ASSERT_TRUE(Front(incremental) == Front(scratch)) << f.Name << " frame " << i;
+      if (i % 8 == 0)
+      {
+        CheckFront(f, incremental, "smooth path frame " + std::to_string(i));
+      }
+      ++frames;
+    }
+  }
+  EXPECT_GE(frames, 80);
+}
+
 // Wing dependencies: every front invariant, incremental == from scratch, and
 // fewer forced splits than the full rows on the same views.
 TEST(ViewDependentRefinement, WingDependencies)
