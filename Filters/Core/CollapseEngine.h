@@ -326,6 +326,7 @@ struct alignas(64) Vertex
   uint32_t LiveCount; // live triangles around the vertex
   uint8_t Kind;
   uint8_t State;
+  uint8_t TagByte; // the schedule's own byte (the engine never reads it)
 };
 static_assert(sizeof(Vertex) == 64, "one cache line per vertex");
 
@@ -702,8 +703,10 @@ public:
   /// Next relaxation level; false when all are used up (the build is done).
   bool Relax();
   int GetRelaxation() const { return this->CurrentLevel; }
-  /// A word per vertex for the schedule, in the vertex's cache line (uninitialised).
+  /// A word and a byte per vertex for the schedule, in the vertex's cache
+  /// line (uninitialised).
   uint32_t& Tag(uint32_t v) { return this->Vertices[v].Tag; }
+  uint8_t& TagByte(uint32_t v) { return this->Vertices[v].TagByte; }
   /// Without a heap: the vertex whose collapse probably comes next, prefetched meanwhile.
   void SetPrefetchHint(uint32_t v) { this->PrefetchHint = v; }
   /// Without a heap: stage 0-5 of the prefetch of v's collapse into its

@@ -87,9 +87,10 @@ Cone MergeCones(const Cone& c1, const Cone& c2)
 }
 
 /// Squared distance from p to triangle abc (closest-point regions).
-double PointTriangleDistance2(const Vec& p, const Vec& a, const Vec& b, const Vec& c)
+/// ab = b - a, ac = c - a, ap = p - a (given: the caller has them).
+double PointTriangleDistance2(const Vec& p, const Vec& b, const Vec& c, const Vec& ab,
+  const Vec& ac, const Vec& ap)
 {
-  const Vec ab = Sub(b, a), ac = Sub(c, a), ap = Sub(p, a);
   const double d1 = Dot(ab, ap), d2 = Dot(ac, ap);
   if (d1 <= 0 && d2 <= 0)
   {
@@ -190,21 +191,24 @@ Vec ClosestWeights(const Vec& p, const Vec& a, const Vec& b, const Vec& c)
 }
 
 /**
- * min(best2, squared distance from p to triangle abc), skipping the exact
+ * min(best2, squared distance from p to triangle abc), ap = p - a (the same
+ * for a whole fan), skipping the exact
  * closest-point search when the distance to the triangle's plane (a lower
  * bound) already reaches best2, with a relative margin far above rounding so
  * the minimum is the same to the bit.
  */
-inline double NearerTriangle(double best2, const Vec& p, const Vec& a, const Vec& b, const Vec& c)
+inline double NearerTriangle(
+  double best2, const Vec& p, const Vec& a, const Vec& b, const Vec& c, const Vec& ap)
 {
-  const Vec n = Cross(Sub(b, a), Sub(c, a));
+  const Vec ab = Sub(b, a), ac = Sub(c, a);
+  const Vec n = Cross(ab, ac);
   const double nn = Dot(n, n);
-  const double h = Dot(n, Sub(p, a));
+  const double h = Dot(n, ap);
   if (nn > 0.0 && h * h >= best2 * nn * (1.0 + 1e-9))
   {
     return best2;
   }
-  return std::min(best2, PointTriangleDistance2(p, a, b, c));
+  return std::min(best2, PointTriangleDistance2(p, b, c, ab, ac, ap));
 }
 
 /// Angle in radians between unit vectors (clamped against rounding).
@@ -572,6 +576,7 @@ MergeTree Replay(const TOMMesh& tom, const double* points, const uint16_t* level
     Node& nv = node[v];
     Node& nu = node[u];
     const Vec pv = { nv.X, nv.Y, nv.Z }, pu = { nu.X, nu.Y, nu.Z };
+    const Vec pvu = Sub(pv, pu);
     const size_t rowBegin = rows.size();
     double local2 = std::numeric_limits<double>::infinity();
     uint32_t nearA = None, nearB = None; // triangle (u, a, b) of the new fan nearest to v
@@ -610,7 +615,7 @@ MergeTree Replay(const TOMMesh& tom, const double* points, const uint16_t* level
       }
       else
       {
-        const double d2 = NearerTriangle(local2, pv, pu, P(a), P(b));
+        const double d2 = NearerTriangle(local2, pv, pu, P(a), P(b), pvu);
         if (d2 < local2)
         {
           local2 = d2;
@@ -635,7 +640,7 @@ MergeTree Replay(const TOMMesh& tom, const double* points, const uint16_t* level
       const uint32_t a = r.Cur[Succ[k]], b = r.Cur[Pred[k]];
       addNeighbor(a);
       addNeighbor(b);
-      const double d2 = NearerTriangle(local2, pv, pu, P(a), P(b));
+      const double d2 = NearerTriangle(local2, pv, pu, P(a), P(b), pvu);
       if (d2 < local2)
       {
         local2 = d2;
@@ -655,7 +660,7 @@ MergeTree Replay(const TOMMesh& tom, const double* points, const uint16_t* level
     // Error: the triangle inequality over the local surface change (distance
     // of the only moved vertex to the new fan), capped by the radius, which
     // bounds the displacement of every original point of the node.
-    const double edge = Norm(Sub(pv, pu));
+    const double edge = Norm(pvu);
     const double radius = std::max(nu.Radius, edge + nv.Radius);
     const double local = std::isfinite(local2) ? std::sqrt(local2) : edge;
     const double nodeError = std::min(std::max(nu.Error, nv.Error) + local, radius);

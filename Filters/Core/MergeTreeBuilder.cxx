@@ -162,6 +162,7 @@ private:
   void Touch(uint32_t x);
   Entry EntryOf(uint32_t x) const;
   void PrefetchAhead();
+  void ClearStamps();
   void CollectAll();
   void CollectNext();
   bool IsTouched(uint32_t v) const { return this->Touched[v] == this->Stamp; }
@@ -186,7 +187,7 @@ private:
   std::vector<Entry> Fresh;    // next level's entries besides the untried rest
   std::vector<Entry> Buffer;   // radix sort and merge
   std::vector<uint8_t> Touched; // == Stamp: touched in this level (then the engine's tag
-                                // of the vertex is its entry in Next)
+                                // of the vertex is its entry in Next, its tag byte Stamp)
   uint8_t Stamp = 0;
   // The next untouched candidates (indices into Current), each with the
   // prefetch stage it has reached: see PrefetchAhead.
@@ -216,9 +217,13 @@ Entry LevelSchedule::EntryOf(uint32_t x) const
 void LevelSchedule::Touch(uint32_t x)
 {
   // A vertex touched again may have a new key: its one entry is overwritten.
-  // The slot is kept in the vertex's own cache line, which the collapse has just read.
-  if (this->Touched[x] != this->Stamp)
+  // The stamp and the slot are kept in the vertex's own cache line, which the
+  // collapse has just read (a read of the Touched array would miss); the
+  // array, which the list scans read, is only written.
+  uint8_t& stamp = this->Engine.TagByte(x);
+  if (stamp != this->Stamp)
   {
+    stamp = this->Stamp;
     this->Touched[x] = this->Stamp;
     this->Engine.Tag(x) = static_cast<uint32_t>(this->Next.size());
     this->Next.push_back(this->EntryOf(x));
@@ -226,6 +231,16 @@ void LevelSchedule::Touch(uint32_t x)
   else
   {
     this->Next[this->Engine.Tag(x)] = this->EntryOf(x);
+  }
+}
+
+//------------------------------------------------------------------------------
+void LevelSchedule::ClearStamps()
+{
+  std::fill(this->Touched.begin(), this->Touched.end(), uint8_t(0));
+  for (uint32_t v = 0; v < this->Engine.GetNumberOfVertices(); ++v)
+  {
+    this->Engine.TagByte(v) = 0;
   }
 }
 
@@ -271,9 +286,14 @@ void LevelSchedule::CollectNext()
   this->Buffer.clear();
   auto a = this->Fresh.cbegin();
   const auto aEnd = this->Fresh.cend();
+  constexpr std::ptrdiff_t ahead = 16; // entries whose touched bytes are fetched
   for (auto b = this->Current.cbegin() + static_cast<std::ptrdiff_t>(this->RestStart);
        b != this->Current.cend(); ++b)
   {
+    if (this->Current.cend() - b > ahead)
+    {
+      Prefetch(&this->Touched[b[ahead].Vertex]);
+    }
     if (this->IsTouched(b->Vertex))
     {
       continue; // its fresh entry came from Next
@@ -419,7 +439,7 @@ bool LevelSchedule::RunLevel(uint16_t level, uint32_t& applied, bool& capped)
   CollapseEngine& e = this->Engine;
   if (++this->Stamp == 0)
   {
-    std::fill(this->Touched.begin(), this->Touched.end(), uint8_t(0));
+    this->ClearStamps();
     this->Stamp = 1;
   }
   this->Next.clear();
@@ -518,7 +538,8 @@ bool LevelSchedule::Run()
   this->Buffer.reserve(n);
   this->Fresh.reserve(n);
   this->Requeued.reserve(1024);
-  this->Touched.assign(n, uint8_t(0));
+  this->Touched.resize(n);
+  this->ClearStamps();
   this->StepLevel.reserve(n);
   this->ReportEvery = std::max<size_t>(1, n / 200);
   this->NextReport = this->ReportEvery;
