@@ -18,8 +18,10 @@ namespace timecritical
 {
 #if defined(__GNUC__)
 #define TIMECRITICAL_NOINLINE __attribute__((noinline))
+#define TIMECRITICAL_PREFETCH(address) __builtin_prefetch(address)
 #else
 #define TIMECRITICAL_NOINLINE
+#define TIMECRITICAL_PREFETCH(address)
 #endif
 
 namespace
@@ -778,6 +780,26 @@ uint32_t ViewDependentRefinement::LastActiveChild(uint32_t w) const
  * corners of e_v's triangles the nearest displayed ancestors of their corners,
  * so the incremental triangles are the selectively refined mesh of the front.
  */
+void ViewDependentRefinement::PrefetchOperation(uint32_t v) const
+{
+  // What Split(v) or Merge(v) will read at random, all reachable from v's
+  // record: fetched together instead of one miss after the other.
+  const Links& l = this->Link[v];
+  TIMECRITICAL_PREFETCH(&this->Link[l.Parent]);
+  TIMECRITICAL_PREFETCH(this->Needs.data() + l.NeedBegin);
+  TIMECRITICAL_PREFETCH(this->StarSlots.data() + l.StarBegin);
+  TIMECRITICAL_PREFETCH(this->DisplayPos.data() + l.BlockBegin);
+  TIMECRITICAL_PREFETCH(this->BirthCorners.data() + 3 * size_t(l.BlockBegin));
+  if (l.Slot != None)
+  {
+    TIMECRITICAL_PREFETCH(&this->Nodes[l.Slot]);
+  }
+  if (l.SplitPos != None)
+  {
+    TIMECRITICAL_PREFETCH(&this->SplitList[l.SplitPos]);
+  }
+}
+
 uint32_t ViewDependentRefinement::NextRequirement(uint32_t v, uint8_t& stage, uint32_t& index) const
 {
   // The front only grows during a forced split, so what was displayed stays
@@ -786,6 +808,7 @@ uint32_t ViewDependentRefinement::NextRequirement(uint32_t v, uint8_t& stage, ui
   switch (stage)
   {
     case 0:
+      this->PrefetchOperation(v); // v is split once its needs are
       if (!this->Active[u])
       {
         return u;
@@ -816,6 +839,15 @@ uint32_t ViewDependentRefinement::NextRequirement(uint32_t v, uint8_t& stage, ui
       {
         if (!this->Active[this->Needs[index]])
         {
+          // The later ones will be split too: their records are fetched
+          // meanwhile (a chain of misses per forced split otherwise).
+          for (uint32_t i = index + 1; i < end; ++i)
+          {
+            if (!this->Active[this->Needs[i]])
+            {
+              TIMECRITICAL_PREFETCH(&this->Link[this->Needs[i]]);
+            }
+          }
           return this->Needs[index];
         }
       }
@@ -1136,7 +1168,16 @@ void ViewDependentRefinement::MergeUnwanted()
     const int bit = 63 - __builtin_clzll(bits[word]);
     bits[word] &= ~(uint64_t(1) << bit);
     const uint32_t x = uint32_t(word * 64 + size_t(bit));
-    if (this->Link[x].MergePos == None || this->Wanted(x)) // !CanMerge(x) || ...
+    if (bits[word] != 0) // the next one's record, fetched meanwhile
+    {
+      TIMECRITICAL_PREFETCH(&this->Link[word * 64 + size_t(63 - __builtin_clzll(bits[word]))]);
+    }
+    if (this->Link[x].MergePos == None)
+    {
+      continue; // !CanMerge(x)
+    }
+    this->PrefetchOperation(x); // most are merged
+    if (this->Wanted(x))
     {
       continue;
     }

@@ -239,6 +239,7 @@ private:
   /// First inactive vertex whose split v needs, v itself when none; UINT32_MAX
   /// when blocked. Resumes the scan at (stage, index), 0 at first.
   uint32_t NextRequirement(uint32_t v, uint8_t& stage, uint32_t& index) const;
+  void PrefetchOperation(uint32_t v) const; // what Split(v) or Merge(v) reads
   uint32_t NextChild(uint32_t w) const;
   uint32_t LastActiveChild(uint32_t w) const;
   void AddDisplay(uint32_t t);
