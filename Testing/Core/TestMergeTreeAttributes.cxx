@@ -386,6 +386,6 @@ TEST(MergeTreeAttributes, Speed)
   std::printf("ComputeMergeTree: %u triangles in %.3f s (%.3f s per million), %u levels\n",
     b.Mesh.GetNumberOfTriangles(), seconds, perMillion, tree.LevelCount);
   EXPECT_EQ(tree.GetNumberOfVertices(), b.Mesh.GetNumberOfVertices());
-  // Goal 0.2 s per million on one core (merge-tree TOMs); generous for loaded test machines.
-  EXPECT_LT(perMillion, 2.0);
+  // Time is printed, not asserted: the build rate goal is checked by
+  // TOMBenchmark (section 5), not by a unit test on a shared, loaded machine.
 }
