@@ -359,9 +359,10 @@ void CheckShadingWeight(const MergeTreeErrorOptions& options)
 // next events' lines are prefetched, and the monotone pass ("must be split
 // first", ViewDependentRefinement's rule) runs in the same loop: every event it
 // depends on is earlier in the replay, so its final error and depth are known.
-// The TOM must be valid and the points finite.
-MergeTree Replay(const TOMMesh& tom, const double* points, const uint16_t* levels,
-  const MergeTreeErrorOptions& options, collapse::ScratchBlocks* scratch)
+// The TOM must be valid and the points finite; point v of the TOM is
+// points[3 * pointIds[v]] (points[3 * v] without ids).
+MergeTree Replay(const TOMMesh& tom, const double* points, const uint32_t* pointIds,
+  const uint16_t* levels, const MergeTreeErrorOptions& options, collapse::ScratchBlocks* scratch)
 {
   const double shadingWeight = options.ShadingWeight;
   const bool shading = shadingWeight > 0.0;
@@ -382,9 +383,10 @@ MergeTree Replay(const TOMMesh& tom, const double* points, const uint16_t* level
   for (uint32_t v = 0; v < N; ++v)
   {
     Node& n = node[v];
-    n.X = points[3 * size_t(v)];
-    n.Y = points[3 * size_t(v) + 1];
-    n.Z = points[3 * size_t(v) + 2];
+    const double* p = points + 3 * size_t(pointIds ? pointIds[v] : v);
+    n.X = p[0];
+    n.Y = p[1];
+    n.Z = p[2];
     n.Error = 0.0;
     n.Radius = 0.0;
     n.FanStart = 0;
@@ -409,9 +411,9 @@ MergeTree Replay(const TOMMesh& tom, const double* points, const uint16_t* level
   // vectors summed in triangle order (by scattering them in triangle order,
   // as the fans list them), then the widest face normal from it.
   WorkArray<Cone> cone(N, scratch);
-  WorkArray<Shade> shade(N, scratch);
   // Replay state: current corner ids of every triangle.
   WorkArray<Tri> tri(T, scratch);
+  WorkArray<Shade> shade(N, scratch);
   {
     constexpr uint32_t Ahead = 8; // triangles whose vertices are prefetched
     auto faceArea = [&P](const uint32_t* c) { // twice the area times the normal
@@ -515,9 +517,10 @@ MergeTree Replay(const TOMMesh& tom, const double* points, const uint16_t* level
     }
   }
 
-  // Rows in replay order (v descending), moved to vertex order at the end.
-  std::vector<uint32_t> rowStart(N, 0);
-  std::vector<uint32_t> rows;
+  // Rows in replay order (v descending), in place: turned into vertex order
+  // at the end.
+  WorkArray<uint32_t> rowStart(N, scratch);
+  std::vector<uint32_t>& rows = tree.Dependencies;
   rows.reserve(8 * size_t(N - B) + 64); // ~7 per event on igea
 
   for (uint32_t v = N; v-- > B;)
@@ -761,19 +764,20 @@ MergeTree Replay(const TOMMesh& tom, const double* points, const uint16_t* level
     tree.ConeCosine[w] = cone[w].Angle >= Pi ? -1.0f : static_cast<float>(std::cos(cone[w].Angle));
   }
 
-  // Dependency rows in vertex order.
+  // Dependency rows in vertex order: the replay wrote them from the last
+  // vertex down, so the reversed array lists the rows in vertex order, each
+  // reversed; then each row is turned back.
   for (uint32_t v = 0; v < N; ++v)
   {
     const uint32_t length = v < B ? 0u
       : static_cast<uint32_t>((v == B ? rows.size() : rowStart[v - 1]) - rowStart[v]);
     tree.DependencyOffsets[size_t(v) + 1] = tree.DependencyOffsets[v] + length;
   }
-  tree.Dependencies.resize(tree.DependencyOffsets[N]);
+  std::reverse(rows.begin(), rows.end());
   for (uint32_t v = B; v < N; ++v)
   {
-    std::copy(rows.begin() + rowStart[v],
-      rows.begin() + rowStart[v] + (tree.DependencyOffsets[size_t(v) + 1] - tree.DependencyOffsets[v]),
-      tree.Dependencies.begin() + tree.DependencyOffsets[v]);
+    std::reverse(rows.begin() + tree.DependencyOffsets[v],
+      rows.begin() + tree.DependencyOffsets[size_t(v) + 1]);
   }
 
   // Levels: given, or the depth above (0 = finest) saturated to 16 bits.
@@ -816,14 +820,15 @@ MergeTree ComputeMergeTree(const TOMMesh& tom, const double* points, const uint1
         "ComputeMergeTree: non-finite coordinate of point " + std::to_string(i / 3));
     }
   }
-  return Replay(tom, points, levels, options, nullptr);
+  return Replay(tom, points, nullptr, levels, options, nullptr);
 }
 
 //------------------------------------------------------------------------------
 MergeTree detail::ComputeBuiltMergeTree(const TOMMesh& tom, const double* points,
-  const uint16_t* levels, const MergeTreeErrorOptions& options, collapse::ScratchBlocks* scratch)
+  const uint32_t* pointIds, const uint16_t* levels, const MergeTreeErrorOptions& options,
+  collapse::ScratchBlocks* scratch)
 {
   CheckShadingWeight(options);
-  return Replay(tom, points, levels, options, scratch);
+  return Replay(tom, points, pointIds, levels, options, scratch);
 }
 }

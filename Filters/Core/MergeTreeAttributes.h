@@ -65,10 +65,13 @@ namespace detail
  * Internal to FiltersCore: ComputeMergeTree for the TOM that MergeTreeBuilder
  * has just built (valid by construction, finite points), without validating
  * it again, its working arrays taken from scratch (the builder's finished
- * ones) where they fit. Throws std::invalid_argument on an invalid ShadingWeight.
+ * ones) where they fit. Point v of the TOM is points[3 * pointIds[v]] (the
+ * builder's input and VertexOrder). Throws std::invalid_argument on an
+ * invalid ShadingWeight.
  */
-MergeTree ComputeBuiltMergeTree(const TOMMesh& tom, const double* points, const uint16_t* levels,
-  const MergeTreeErrorOptions& options, collapse::ScratchBlocks* scratch);
+MergeTree ComputeBuiltMergeTree(const TOMMesh& tom, const double* points,
+  const uint32_t* pointIds, const uint16_t* levels, const MergeTreeErrorOptions& options,
+  collapse::ScratchBlocks* scratch);
 }
 }
 

@@ -621,20 +621,8 @@ MergeTreeBuildResult MergeTreeBuilder::Build(const double* points, size_t number
   // The engine's arrays are done with: the merge tree's working arrays reuse them.
   collapse::ScratchBlocks scratch;
   engine.ReleaseWorkingMemory(scratch);
-  double* positions = scratch.Take<double>(3 * static_cast<size_t>(n));
-  std::vector<double> ownPositions;
-  if (!positions)
-  {
-    ownPositions.resize(3 * static_cast<size_t>(n));
-    positions = ownPositions.data();
-  }
-  for (uint32_t v = 0; v < n; ++v)
-  {
-    std::copy_n(points + 3 * static_cast<size_t>(result.TOM.VertexOrder[v]), 3,
-      positions + 3 * static_cast<std::ptrdiff_t>(v));
-  }
-  result.Tree =
-    detail::ComputeBuiltMergeTree(tom, positions, levels.data(), this->Options.Errors, &scratch);
+  result.Tree = detail::ComputeBuiltMergeTree(tom, points, result.TOM.VertexOrder.data(),
+    levels.data(), this->Options.Errors, &scratch);
   return result;
 }
 }
