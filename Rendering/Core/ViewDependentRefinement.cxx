@@ -49,7 +49,9 @@ struct ViewDependentRefinement::Candidate
   Node Data;
   uint32_t Id;
   uint32_t Owner;
-  double WakeAt; // surely unwanted while Odometer < WakeAt (see Evaluate())
+  double WakeAt;      // surely unwanted while Odometer < WakeAt (see Evaluate())
+  double FactorUntil; // its threshold factor cannot drop below Factor while Odometer < FactorUntil
+  float Factor;
 };
 
 ViewDependentRefinement::ViewDependentRefinement() = default;
@@ -108,6 +110,10 @@ void ViewDependentRefinement::InitializeImpl(
           "ViewDependentRefinement: bad dependency of vertex " + std::to_string(v));
       }
     }
+  }
+  if (n > 0x7fffffffu)
+  {
+    throw std::invalid_argument("ViewDependentRefinement: more than 2^31 - 1 vertices");
   }
   this->N = n;
   this->B = b;
@@ -462,7 +468,7 @@ void ViewDependentRefinement::PrepareView()
     std::memcpy(this->SleepSettings, settings, sizeof(settings));
     for (uint32_t i = 0; i < this->SplitListSize; ++i)
     {
-      this->SplitList[i].WakeAt = -1.0;
+      this->SplitList[i].WakeAt = this->SplitList[i].FactorUntil = -1.0;
     }
   }
   const double mx = this->EyeX - this->LastEye[0], my = this->EyeY - this->LastEye[1],
@@ -483,11 +489,11 @@ double ViewDependentRefinement::Priority(uint32_t v) const
 // Not inlined: every priority comes from the same machine code (no
 // context-dependent contraction), so a node gets the same key from the sweep's
 // copy as from Nodes.
-TIMECRITICAL_NOINLINE double ViewDependentRefinement::Evaluate(const Node& node, double* wake) const
+TIMECRITICAL_NOINLINE double ViewDependentRefinement::Evaluate(const Node& node, Sleep* sleep) const
 {
-  if (wake != nullptr)
+  if (sleep != nullptr)
   {
-    *wake = 0.0;
+    *sleep = Sleep{};
   }
   const double cx = node.Center[0], cy = node.Center[1], cz = node.Center[2];
   const double r = node.Radius;
@@ -527,9 +533,9 @@ TIMECRITICAL_NOINLINE double ViewDependentRefinement::Evaluate(const Node& node,
     dist = std::sqrt(dx * dx + dy * dy + dz * dz);
     if (!(node.Error > 0.0f))
     {
-      if (wake != nullptr && this->PixelThreshold > 0.0)
+      if (sleep != nullptr && this->PixelThreshold > 0.0)
       {
-        *wake = std::numeric_limits<double>::infinity(); // key 0 until the settings change
+        sleep->Wake = std::numeric_limits<double>::infinity(); // key 0 until the settings change
       }
       return 0.0;
     }
@@ -575,11 +581,11 @@ TIMECRITICAL_NOINLINE double ViewDependentRefinement::Evaluate(const Node& node,
   {
     if (this->BackFaceSimplification && cosA > sinTB)
     {
-      if (wake != nullptr && !this->View.Parallel)
+      if (sleep != nullptr && !this->View.Parallel)
       {
         // sin(90 - (theta + beta) - alpha), alpha = angle(axis, d)
         const double margin = cosTB * cosA - sinTB * std::sqrt(std::max(0.0, 1.0 - cosA * cosA));
-        *wake = this->WakeRadius(dist, r, margin, -1.0);
+        sleep->Wake = this->WakeRadius(dist, r, margin, -1.0);
       }
       return -1.0; // every normal faces away from every view direction
     }
@@ -619,28 +625,49 @@ TIMECRITICAL_NOINLINE double ViewDependentRefinement::Evaluate(const Node& node,
     }
   }
   const double key = factor > 0.0 ? projected / factor : std::numeric_limits<double>::infinity();
-  if (wake != nullptr && !this->View.Parallel && this->PixelThreshold > 0.0 && factor > 0.0 &&
-    !this->IsWanted(static_cast<float>(key)))
+  if (sleep != nullptr && !this->View.Parallel && factor > 0.0)
   {
-    // Unwanted while the projected error over this factor stays below tau
-    // (the near plane only lowers it) and the factor cannot drop.
-    const double reach = node.Error * this->PixelsPerUnit /
-      (factor * this->PixelThreshold * (1.0 - 1e-6));
-    const double room = dist - r - reach;
-    if (room > 0.0)
+    // The factor cannot drop while the eye keeps the node off silhouettes and
+    // highlights it is not on: sin(|90 - alpha| - (theta + beta)) and
+    // sin(psi - (2 theta + beta)) as margins.
+    const double sinA = std::sqrt(std::max(0.0, 1.0 - cosA * cosA));
+    const double clamped = std::max(-1.0, std::min(1.0, cosPsi));
+    const double marginSilhouette =
+      marginSilhouetteNeeded ? std::abs(cosA) * cosTB - sinA * sinTB : -1.0;
+    const double marginHighlight = marginHighlightNeeded
+      ? std::sqrt(1.0 - clamped * clamped) * cosAngle - clamped * sinAngle
+      : -1.0;
+    sleep->FactorRadius = this->WakeRadius(dist, r, marginSilhouette, marginHighlight);
+    sleep->Factor = static_cast<float>(factor);
+    if (this->PixelThreshold > 0.0 && !this->IsWanted(static_cast<float>(key)))
     {
-      // sin(|90 - alpha| - (theta + beta)), sin(psi - (2 theta + beta)).
-      const double sinA = std::sqrt(std::max(0.0, 1.0 - cosA * cosA));
-      const double clamped = std::max(-1.0, std::min(1.0, cosPsi));
-      const double marginSilhouette =
-        marginSilhouetteNeeded ? std::abs(cosA) * cosTB - sinA * sinTB : -1.0;
-      const double marginHighlight = marginHighlightNeeded
-        ? std::sqrt(1.0 - clamped * clamped) * cosAngle - clamped * sinAngle
-        : -1.0;
-      *wake = std::min(room, this->WakeRadius(dist, r, marginSilhouette, marginHighlight));
+      // Unwanted while, besides, the projected error over this factor stays
+      // below tau (the near plane only lowers it).
+      const double reach = node.Error * this->PixelsPerUnit /
+        (factor * this->PixelThreshold * (1.0 - 1e-6));
+      sleep->Wake = std::max(0.0, std::min(dist - r - reach, sleep->FactorRadius));
     }
   }
   return key;
+}
+
+double ViewDependentRefinement::KeyBound(const Node& node, float factor) const
+{
+  // Evaluate()'s projected error with the current eye over a factor the
+  // node's cannot be below, widened by 1e-6 (rounding): >= its key.
+  const double dx = node.Center[0] - this->EyeX;
+  const double dy = node.Center[1] - this->EyeY;
+  const double dz = node.Center[2] - this->EyeZ;
+  const double dist = std::sqrt(dx * dx + dy * dy + dz * dz);
+  const double r = node.Radius;
+  if (!(dist > r) || !(factor > 0.0f))
+  {
+    return std::numeric_limits<double>::infinity();
+  }
+  const double nearPlane = this->View.NearDistance > 0.0
+    ? this->View.NearDistance
+    : 1e-3 * std::max(r, static_cast<double>(node.Error));
+  return node.Error * this->PixelsPerUnit / std::max(dist - r, nearPlane) / factor * (1.0 + 1e-6);
 }
 
 double ViewDependentRefinement::WakeRadius(
@@ -946,7 +973,7 @@ void ViewDependentRefinement::RefreshSplitCandidate(uint32_t w)
     {
       return;
     }
-    const Candidate& e = this->SplitList[p] = Candidate{ this->Nodes[slot], c, w, -1.0 };
+    const Candidate& e = this->SplitList[p] = Candidate{ this->Nodes[slot], c, w, -1.0, -1.0, 0.0f };
     if (this->Mode == UpdateMode::Fixed && this->WantedNode(e.Data))
     {
       this->Work[this->WorkSize++] = c; // a new candidate of the running update
@@ -1206,18 +1233,22 @@ const RefinementStatistics& ViewDependentRefinement::UpdateFixedAccuracy()
   for (uint32_t i = 0; i < this->SplitListSize; ++i)
   {
     Candidate& e = this->SplitList[i];
-    if (e.WakeAt > this->Odometer || this->SurelyUnwanted(e.Data))
+    if (e.WakeAt > this->Odometer || this->SurelyUnwanted(e.Data) ||
+      (e.FactorUntil > this->Odometer && this->PixelThreshold > 0.0 &&
+        this->KeyBound(e.Data, e.Factor) <= this->PixelThreshold))
     {
-      continue;
+      continue; // asleep, too far, or below tau with any factor it can have
     }
-    double wake;
-    if (this->IsWanted(static_cast<float>(this->Evaluate(e.Data, &wake))))
+    Sleep sleep;
+    if (this->IsWanted(static_cast<float>(this->Evaluate(e.Data, &sleep))))
     {
       this->Work[this->WorkSize++] = e.Id;
     }
     else
     {
-      e.WakeAt = this->Odometer + wake;
+      e.WakeAt = this->Odometer + sleep.Wake;
+      e.FactorUntil = this->Odometer + sleep.FactorRadius;
+      e.Factor = sleep.Factor;
     }
   }
   while (this->WorkSize > 0)
@@ -1241,7 +1272,9 @@ const RefinementStatistics& ViewDependentRefinement::UpdateFixedAccuracy()
 namespace
 {
 // Split heap: largest key on top; merge heap: smallest key on top (std heaps
-// put the largest by the comparator on top).
+// put the largest by the comparator on top). Split entries hold 2 id + 1 for a
+// key, 2 id for a bound on it (lazy): at equal keys the smaller id first, and
+// a vertex's bound before its key, as if all were keys.
 struct SplitOrder
 {
   template <typename E>
@@ -1268,7 +1301,7 @@ void ViewDependentRefinement::OfferSplit(uint32_t c)
   {
     return;
   }
-  this->SplitHeap[this->SplitSize++] = HeapEntry{ this->Key(c), c };
+  this->SplitHeap[this->SplitSize++] = HeapEntry{ this->Key(c), (c << 1) | 1 };
   std::push_heap(this->SplitHeap.data(), this->SplitHeap.data() + this->SplitSize, SplitOrder());
 }
 
@@ -1338,17 +1371,26 @@ const RefinementStatistics& ViewDependentRefinement::UpdateBudget(
     {
       continue;
     }
-    double wake;
-    const float key = static_cast<float>(this->Evaluate(e.Data, &wake));
-    if (!this->IsWanted(key))
+    if (e.FactorUntil > this->Odometer)
     {
-      e.WakeAt = this->Odometer + wake;
+      // Lazy: a bound now, the key when it reaches the top (most never do).
+      const double bound = this->KeyBound(e.Data, e.Factor);
+      if (!(this->PixelThreshold > 0.0 && bound <= this->PixelThreshold))
+      {
+        split[this->SplitSize++] = HeapEntry{ static_cast<float>(bound), e.Id << 1 };
+      }
+      continue;
     }
-    else
+    Sleep sleep;
+    const float key = static_cast<float>(this->Evaluate(e.Data, &sleep));
+    e.WakeAt = this->Odometer + sleep.Wake;
+    e.FactorUntil = this->Odometer + sleep.FactorRadius;
+    e.Factor = sleep.Factor;
+    if (this->IsWanted(key))
     {
       this->Link[e.Id].KeyFrame = this->Frame;
       this->Link[e.Id].Key = key;
-      split[this->SplitSize++] = HeapEntry{ key, e.Id };
+      split[this->SplitSize++] = HeapEntry{ key, (e.Id << 1) | 1 };
     }
   }
   std::make_heap(split, split + this->SplitSize, SplitOrder());
@@ -1436,12 +1478,24 @@ const RefinementStatistics& ViewDependentRefinement::UpdateBudget(
       break;
     }
     const HeapEntry top = split[0];
-    const uint32_t s = top.Id;
+    const uint32_t s = top.Id >> 1;
     if (this->Active[s] || this->Touched[s] == this->TouchFrame ||
       !this->Active[this->Link[s].Parent] || this->NextChild(this->Link[s].Parent) != s)
     {
       std::pop_heap(split, split + this->SplitSize, SplitOrder());
       --this->SplitSize;
+      continue;
+    }
+    if ((top.Id & 1) == 0)
+    {
+      // A bound on top: its key now (no larger), back in its place if wanted.
+      std::pop_heap(split, split + this->SplitSize, SplitOrder());
+      --this->SplitSize;
+      if (this->Wanted(s))
+      {
+        split[this->SplitSize++] = HeapEntry{ this->Key(s), (s << 1) | 1 };
+        std::push_heap(split, split + this->SplitSize, SplitOrder());
+      }
       continue;
     }
     const uint32_t cost = this->Link[s].BlockEnd - this->Link[s].BlockBegin;

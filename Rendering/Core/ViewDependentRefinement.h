@@ -212,10 +212,20 @@ private:
   void NextFrame();
   /// Projected error of event v over its local threshold factor; negative when culled.
   double Priority(uint32_t v) const;
-  /// Priority() of a node; with `wake`, also how far the eye may move (the
-  /// settings, light and viewport staying) before an unwanted node can be
-  /// wanted (0: no such bound).
-  double Evaluate(const Node& node, double* wake = nullptr) const;
+  /// How far the eye may move (the settings, light and viewport staying)
+  /// before an unwanted node can be wanted, and before its threshold factor
+  /// can drop below Factor (0: no such bound).
+  struct Sleep
+  {
+    double Wake = 0.0;
+    double FactorRadius = 0.0;
+    float Factor = 0.0f;
+  };
+  /// Priority() of a node, and with `sleep` how long it keeps.
+  double Evaluate(const Node& node, Sleep* sleep = nullptr) const;
+  /// >= the key of a node whose threshold factor is at least `factor` (the
+  /// current eye, near plane and tau; ignores culling, which only lowers keys).
+  double KeyBound(const Node& node, float factor) const;
   /// Eye move that keeps angular margins (sines; < 0: none) at dist, radius r.
   double WakeRadius(double dist, double r, double margin0, double margin1) const;
 
