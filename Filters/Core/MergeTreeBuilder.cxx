@@ -182,6 +182,7 @@ private:
   size_t RestStart = 0;        // Current[RestStart..]: left untried by a capped level
   std::vector<Entry> Requeued; // min-heap: legal alternatives costlier than their turn
   std::vector<Entry> Next;     // fresh entries of the touched vertices
+  size_t CollapseEntries = 0;  // Next's size before the collapse being applied
   std::vector<Entry> Deferred; // untouched vertices whose target is touched, and the
                                // re-queued ones a capped level left
   std::vector<Entry> Fresh;    // next level's entries besides the untried rest
@@ -228,8 +229,10 @@ void LevelSchedule::Touch(uint32_t x)
     this->Engine.Tag(x) = static_cast<uint32_t>(this->Next.size());
     this->Next.push_back(this->EntryOf(x));
   }
-  else
+  else if (this->Engine.Tag(x) < this->CollapseEntries)
   {
+    // Touched by an earlier collapse (an entry of this one is already fresh:
+    // most neighbours come twice, once per triangle).
     this->Next[this->Engine.Tag(x)] = this->EntryOf(x);
   }
 }
@@ -410,6 +413,7 @@ void LevelSchedule::Apply(uint32_t u, uint32_t w, uint16_t level)
 
   const uint32_t before = e.GetRemovedCount();
   e.ApplyCollapse(u, w);
+  this->CollapseEntries = this->Next.size();
   // u, and vertices orphaned with it (non-manifold input only).
   for (uint32_t step = before; step < e.GetRemovedCount(); ++step)
   {
