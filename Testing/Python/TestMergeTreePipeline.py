@@ -22,7 +22,6 @@ import unittest
 
 import numpy as np
 
-from paraview import servermanager
 # Star import: LoadPlugin(ns=globals()) adds the plugin's filters to this namespace.
 from paraview.simple import *  # noqa: F401,F403
 from vtkmodules.util.numpy_support import vtk_to_numpy
@@ -36,7 +35,7 @@ from vtkmodules.vtkRenderingCore import vtkCamera
 from timecritical import (vtkExtractViewDependentMesh, vtkMergeTreeBuilder,
                           vtkMergeTreeFieldData)
 
-from timecritical_testing import COW, load_plugin, output_dir  # noqa: E402
+from timecritical_testing import COW, ProxyTests, load_plugin, output_dir  # noqa: E402
 
 POINT_ARRAYS = ("TOMSubstitution", "MergeTreeLevel", "MergeTreeError", "MergeTreeRadius",
                 "MergeTreeConeAxis", "MergeTreeConeCosine")
@@ -209,27 +208,13 @@ class WrappedClasses(unittest.TestCase):
         check_closed_manifold(self, extract.GetOutput())
 
 
-class PluginFilters(unittest.TestCase):
+class PluginFilters(ProxyTests, unittest.TestCase):
     """The plugin's filters through paraview.simple."""
 
     def setUp(self):
         self.created = []
         self.source = self.new(Sphere(ThetaResolution=48, PhiResolution=48))
         self.tree_proxy = self.new(BuildMergeTree(Input=self.source))
-
-    def tearDown(self):
-        for proxy in self.created:
-            Delete(proxy)
-
-    def new(self, proxy):
-        self.created.insert(0, proxy)
-        return proxy
-
-    def fetch(self, proxy):
-        proxy.UpdatePipeline()
-        data = servermanager.Fetch(proxy)
-        self.assertIsNotNone(data)
-        return data
 
     def extract(self, input_proxy, **properties):
         values = dict(CameraPosition=[0, 0, 3], CameraFocalPoint=[0, 0, 0],

@@ -21,7 +21,7 @@ from vtkmodules.util.numpy_support import vtk_to_numpy
 from vtkmodules.vtkFiltersSources import vtkSphereSource
 from vtkmodules.vtkIOXML import vtkXMLPolyDataWriter
 
-from timecritical_testing import load_plugin, output_dir
+from timecritical_testing import ProxyTests, load_plugin, output_dir
 
 load_plugin(globals(), ["BuildTotallyOrderedMesh", "ExtractTOMResolution", "BuildMergeTree",
                         "ExtractViewDependentMesh"])
@@ -42,7 +42,7 @@ def write_single_piece_sphere():
     return path, sphere.GetOutput().GetNumberOfPolys()
 
 
-class EmptyPieces(unittest.TestCase):
+class EmptyPieces(ProxyTests, unittest.TestCase):
     @classmethod
     def setUpClass(cls):
         cls.path, cls.triangles = write_single_piece_sphere()
@@ -50,20 +50,6 @@ class EmptyPieces(unittest.TestCase):
     def setUp(self):
         self.created = []
         self.reader = self.new(XMLPolyDataReader(FileName=[self.path]))
-
-    def tearDown(self):
-        for proxy in self.created:
-            Delete(proxy)
-
-    def new(self, proxy):
-        self.created.insert(0, proxy)
-        return proxy
-
-    def fetch(self, proxy):
-        proxy.UpdatePipeline()
-        data = servermanager.Fetch(proxy)
-        self.assertIsNotNone(data)
-        return data
 
     def test_two_ranks_and_all_data_on_rank_0(self):
         # Otherwise this test would not test empty pieces at all.

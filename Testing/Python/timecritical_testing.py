@@ -35,3 +35,26 @@ def output_dir(prefix):
         os.makedirs(folder, exist_ok=True)
         return tempfile.mkdtemp(prefix=prefix + "-", dir=folder)
     return tempfile.mkdtemp(prefix=prefix + "-")
+
+
+class ProxyTests:
+    """Mixin for unittest.TestCase classes that create paraview.simple proxies:
+    new() registers a proxy for deletion after the test (newest first), fetch()
+    updates one and brings its data to the client. setUp() must set
+    self.created = [] before calling new()."""
+
+    def tearDown(self):
+        from paraview.simple import Delete
+        for proxy in self.created:
+            Delete(proxy)
+
+    def new(self, proxy):
+        self.created.insert(0, proxy)
+        return proxy
+
+    def fetch(self, proxy):
+        from paraview import servermanager
+        proxy.UpdatePipeline()
+        data = servermanager.Fetch(proxy)
+        self.assertIsNotNone(data)
+        return data
