@@ -1087,8 +1087,8 @@ void ViewDependentRefinement::Split(uint32_t v)
   {
     this->Touched[v] = this->TouchFrame;
     this->SplitLog[this->SplitLogSize++] = v;
-    this->OfferSplit(this->NextChild(u));
-    this->OfferSplit(this->NextChild(v));
+    this->OfferSplit(u);
+    this->OfferSplit(v);
   }
 }
 
@@ -1129,8 +1129,7 @@ void ViewDependentRefinement::Merge(uint32_t v)
   this->RefreshSplitCandidate(v);
   if (this->Mode == UpdateMode::Budget)
   {
-    this->Touched[v] = this->TouchFrame;
-    this->OfferSplit(v);
+    this->Touched[v] = this->TouchFrame; // (so not offered as u's candidate again)
   }
 }
 
@@ -1293,16 +1292,27 @@ struct MergeOrder
 };
 }
 
-void ViewDependentRefinement::OfferSplit(uint32_t c)
+void ViewDependentRefinement::OfferSplit(uint32_t w)
 {
-  // Sub-threshold detail is never bought, even when the budget allows it.
-  if (c == None || this->Active[c] || this->Touched[c] == this->TouchFrame ||
-    this->SplitSize == this->SplitHeap.size() || !this->Wanted(c))
+  // w's (new) candidate, keyed from its list entry (its node is there; the
+  // key is not cached: the heap entry carries it). Sub-threshold detail is
+  // never bought, even when the budget allows it.
+  const uint32_t p = this->Link[w].SplitPos;
+  if (p == None || this->SplitSize == this->SplitHeap.size())
   {
     return;
   }
-  this->SplitHeap[this->SplitSize++] = HeapEntry{ this->Key(c), (c << 1) | 1 };
-  std::push_heap(this->SplitHeap.data(), this->SplitHeap.data() + this->SplitSize, SplitOrder());
+  const Candidate& e = this->SplitList[p];
+  if (this->Touched[e.Id] == this->TouchFrame || this->SurelyUnwanted(e.Data))
+  {
+    return;
+  }
+  const float key = static_cast<float>(this->Evaluate(e.Data));
+  if (this->IsWanted(key))
+  {
+    this->SplitHeap[this->SplitSize++] = HeapEntry{ key, (e.Id << 1) | 1 };
+    std::push_heap(this->SplitHeap.data(), this->SplitHeap.data() + this->SplitSize, SplitOrder());
+  }
 }
 
 void ViewDependentRefinement::OfferMerge(uint32_t v)
@@ -1388,8 +1398,6 @@ const RefinementStatistics& ViewDependentRefinement::UpdateBudget(
     e.Factor = sleep.Factor;
     if (this->IsWanted(key))
     {
-      this->Link[e.Id].KeyFrame = this->Frame;
-      this->Link[e.Id].Key = key;
       split[this->SplitSize++] = HeapEntry{ key, (e.Id << 1) | 1 };
     }
   }

@@ -266,8 +266,9 @@ private:
   void MergeUnwanted();
   /// Whether the running bounded budget update must stop (sets Interrupted).
   bool OutOfTime();
-  // Budget mode: push a split or merge candidate with its current priority.
-  void OfferSplit(uint32_t c);
+  // Budget mode: push display vertex w's split candidate, or merge candidate
+  // v, with its current priority.
+  void OfferSplit(uint32_t w);
   void OfferMerge(uint32_t v);
 
   /// What Split() and Merge() must tell the running update about new candidates.
