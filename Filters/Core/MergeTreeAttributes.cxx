@@ -253,7 +253,7 @@ struct alignas(64) Node
   double X, Y, Z;
   double Error;         ///< node error (unrounded) of the subtree merged so far
   double Radius;        ///< node radius of the subtree merged so far
-  uint32_t FanStart;    ///< its fan: corners (3t + k) of its triangles, in Fans
+  uint32_t FanStart;    ///< its fan: corners (4t + k) of its triangles, in Fans
   uint32_t FanCount;
   uint32_t Mark;        ///< last event that listed it in its row
   float ChildError;     ///< final error of the last child merged into it (0: none)
@@ -405,7 +405,8 @@ MergeTree Replay(const TOMMesh& tom, const double* points, const uint32_t* point
   }
   auto P = [&node](uint32_t v) -> Vec { return { node[v].X, node[v].Y, node[v].Z }; };
 
-  // Fans of the full-resolution mesh (corners 3t + k by vertex, t ascending)
+  // Fans of the full-resolution mesh (corners 4t + k by vertex, t ascending:
+  // shifts, not divisions by 3)
   // in one arena: an event writes the new fan of u (its living corners, then
   // v's survivors) at the end, as contiguous corners whose triangles load in
   // parallel (a linked list would chain the misses).
@@ -492,7 +493,7 @@ MergeTree Replay(const TOMMesh& tom, const double* points, const uint32_t* point
       for (uint32_t k = 0; k < 3; ++k)
       {
         Node& n = node[c[k]];
-        fans[n.FanStart + n.FanCount++] = 3 * t + k;
+        fans[n.FanStart + n.FanCount++] = t << 2 | k;
         r.Cur[k] = c[k];
       }
       r.Dead = 0;
@@ -558,7 +559,7 @@ MergeTree Replay(const TOMMesh& tom, const double* points, const uint32_t* point
         const uint32_t* f = fans.data() + n->FanStart;
         for (uint32_t i = 0; i < n->FanCount; ++i)
         {
-          Prefetch(&tri[f[i] / 3]);
+          Prefetch(&tri[f[i] >> 2]);
         }
       }
     }
@@ -569,14 +570,14 @@ MergeTree Replay(const TOMMesh& tom, const double* points, const uint32_t* point
         const uint32_t* f = fans.data() + n->FanStart;
         for (uint32_t i = 0; i < n->FanCount; ++i)
         {
-          const Tri& r = tri[f[i] / 3];
-          const uint32_t k = f[i] % 3;
-          Prefetch(&node[r.Cur[Succ[k]]]);
-          Prefetch(&node[r.Cur[Pred[k]]]);
+          // The next corner's neighbour only: in a closed fan that is each
+          // neighbour once (an open fan's last one may come unfetched).
+          const Tri& r = tri[f[i] >> 2];
+          const uint32_t a = r.Cur[Succ[f[i] & 3u]];
+          Prefetch(&node[a]);
           if (shading)
           {
-            Prefetch(&shade[r.Cur[Succ[k]]]);
-            Prefetch(&shade[r.Cur[Pred[k]]]);
+            Prefetch(&shade[a]);
           }
         }
       }
@@ -609,12 +610,12 @@ MergeTree Replay(const TOMMesh& tom, const double* points, const uint32_t* point
     for (uint32_t i = 0; i < nv.FanCount; ++i)
     {
       const uint32_t s = fv[i];
-      Tri& r = tri[s / 3];
+      Tri& r = tri[s >> 2];
       if (r.Dead)
       {
         continue;
       }
-      const uint32_t k = s % 3;
+      const uint32_t k = s & 3u;
       const uint32_t a = r.Cur[Succ[k]], b = r.Cur[Pred[k]];
       addNeighbor(a);
       addNeighbor(b);
@@ -640,12 +641,12 @@ MergeTree Replay(const TOMMesh& tom, const double* points, const uint32_t* point
     for (uint32_t i = 0; i < nu.FanCount; ++i)
     {
       const uint32_t s = fu[i];
-      const Tri& r = tri[s / 3];
+      const Tri& r = tri[s >> 2];
       if (r.Dead)
       {
         continue;
       }
-      const uint32_t k = s % 3;
+      const uint32_t k = s & 3u;
       const uint32_t a = r.Cur[Succ[k]], b = r.Cur[Pred[k]];
       addNeighbor(a);
       addNeighbor(b);
@@ -817,6 +818,10 @@ MergeTree ComputeMergeTree(const TOMMesh& tom, const double* points, const uint1
   if (N > 0 && points == nullptr)
   {
     throw std::invalid_argument("ComputeMergeTree: no points");
+  }
+  if (tom.GetNumberOfTriangles() >= (1u << 30))
+  {
+    throw std::invalid_argument("ComputeMergeTree: more than 2^30 triangles");
   }
   for (size_t i = 0; i < 3 * static_cast<size_t>(N); ++i)
   {
