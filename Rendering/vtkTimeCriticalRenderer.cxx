@@ -82,6 +82,12 @@ constexpr double TriangleFloorShare = 0.5;
 /// large margin coarsens the frame gracefully instead of emptying it.
 constexpr double MaximumMarginShare = 0.5;
 
+/// The margin never exceeds this share of the target: noise that large is
+/// the machine's (other processes, a start-up transient), and planning the
+/// frame at half the target (the cap was 0.5) halves its image quality to
+/// protect against it.
+constexpr double MaximumMargin = 0.25;
+
 /// Weight of coefficients given by SetCostCoefficients() in the online fit,
 /// in frames (a calibration has 14 samples).
 constexpr double GivenCoefficientFrames = 16.0;
@@ -1100,7 +1106,7 @@ void vtkTimeCriticalRenderer::ChooseResolutions(bool still)
       lowest += in.MaxTime[k] * in.MinResolution[k];
     }
     const double wanted =
-      std::min(this->SafetyFactor * in.Corrector.GetRelativeSpread(), 0.5) * target;
+      std::min(this->SafetyFactor * in.Corrector.GetRelativeSpread(), MaximumMargin) * target;
     this->SafetyMargin =
       std::min(wanted, MaximumMarginShare * std::max(0.0, target - fixed - lowest));
   }

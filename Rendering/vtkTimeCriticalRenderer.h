@@ -257,9 +257,9 @@ public:
    * OnlineCalibration; none without),
    * so that frames miss the target rarely rather than half the time (the
    * paper's "worst case estimate"). The reported prediction stays unbiased.
-   * The margin k sigma target is capped at half the target and at half of
-   * what the fixed part and the objects' coarsest levels leave of it (so a
-   * noisy machine coarsens the frame rather than emptying it).
+   * The margin k sigma target is capped at a quarter of the target and at
+   * half of what the fixed part and the objects' coarsest levels leave of it
+   * (so a noisy machine coarsens the frame rather than emptying it).
    * Default 1.5; 0 plans to the target itself.
    */
   void SetSafetyFactor(double k); ///< in [0, 10]
