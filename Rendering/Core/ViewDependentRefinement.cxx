@@ -651,6 +651,13 @@ TIMECRITICAL_NOINLINE double ViewDependentRefinement::Evaluate(const Node& node,
   return key;
 }
 
+void ViewDependentRefinement::Doze(Candidate& e, const Sleep& sleep) const
+{
+  e.WakeAt = this->Odometer + sleep.Wake;
+  e.FactorUntil = this->Odometer + sleep.FactorRadius;
+  e.Factor = sleep.Factor;
+}
+
 double ViewDependentRefinement::KeyBound(const Node& node, float factor) const
 {
   // Evaluate()'s projected error with the current eye over a factor the
@@ -772,11 +779,6 @@ bool ViewDependentRefinement::Wanted(uint32_t v)
   return this->IsWanted(this->Key(v));
 }
 
-bool ViewDependentRefinement::WantedNode(const Node& node) const
-{
-  // What Wanted() finds for the node, without the cache.
-  return !this->SurelyUnwanted(node) && this->IsWanted(static_cast<float>(this->Evaluate(node)));
-}
 
 //------------------------------------------------------------------------------
 uint32_t ViewDependentRefinement::NextChild(uint32_t w) const
@@ -973,10 +975,20 @@ void ViewDependentRefinement::RefreshSplitCandidate(uint32_t w)
     {
       return;
     }
-    const Candidate& e = this->SplitList[p] = Candidate{ this->Nodes[slot], c, w, -1.0, -1.0, 0.0f };
-    if (this->Mode == UpdateMode::Fixed && this->WantedNode(e.Data))
+    Candidate& e = this->SplitList[p] = Candidate{ this->Nodes[slot], c, w, -1.0, -1.0, 0.0f };
+    if (this->Mode == UpdateMode::Fixed && !this->SurelyUnwanted(e.Data))
     {
-      this->Work[this->WorkSize++] = c; // a new candidate of the running update
+      // A new candidate of the running update: split if wanted, else it may
+      // sleep from now on (the next sweeps skip it).
+      Sleep sleep;
+      if (this->IsWanted(static_cast<float>(this->Evaluate(e.Data, &sleep))))
+      {
+        this->Work[this->WorkSize++] = c;
+      }
+      else
+      {
+        this->Doze(e, sleep);
+      }
     }
   }
   else if (p != None)
@@ -1245,9 +1257,7 @@ const RefinementStatistics& ViewDependentRefinement::UpdateFixedAccuracy()
     }
     else
     {
-      e.WakeAt = this->Odometer + sleep.Wake;
-      e.FactorUntil = this->Odometer + sleep.FactorRadius;
-      e.Factor = sleep.Factor;
+      this->Doze(e, sleep);
     }
   }
   while (this->WorkSize > 0)
@@ -1302,12 +1312,14 @@ void ViewDependentRefinement::OfferSplit(uint32_t w)
   {
     return;
   }
-  const Candidate& e = this->SplitList[p];
+  Candidate& e = this->SplitList[p];
   if (this->Touched[e.Id] == this->TouchFrame || this->SurelyUnwanted(e.Data))
   {
     return;
   }
-  const float key = static_cast<float>(this->Evaluate(e.Data));
+  Sleep sleep;
+  const float key = static_cast<float>(this->Evaluate(e.Data, &sleep));
+  this->Doze(e, sleep); // for the next updates
   if (this->IsWanted(key))
   {
     this->SplitHeap[this->SplitSize++] = HeapEntry{ key, (e.Id << 1) | 1 };
@@ -1393,9 +1405,7 @@ const RefinementStatistics& ViewDependentRefinement::UpdateBudget(
     }
     Sleep sleep;
     const float key = static_cast<float>(this->Evaluate(e.Data, &sleep));
-    e.WakeAt = this->Odometer + sleep.Wake;
-    e.FactorUntil = this->Odometer + sleep.FactorRadius;
-    e.Factor = sleep.Factor;
+    this->Doze(e, sleep);
     if (this->IsWanted(key))
     {
       split[this->SplitSize++] = HeapEntry{ key, (e.Id << 1) | 1 };

@@ -226,13 +226,13 @@ private:
   /// >= the key of a node whose threshold factor is at least `factor` (the
   /// current eye, near plane and tau; ignores culling, which only lowers keys).
   double KeyBound(const Node& node, float factor) const;
+  void Doze(Candidate& e, const Sleep& sleep) const; // e keeps what Evaluate() found
   /// Eye move that keeps angular margins (sines; < 0: none) at dist, radius r.
   double WakeRadius(double dist, double r, double margin0, double margin1) const;
 
   /// Priority(v), computed once per update.
   float Key(uint32_t v);
   bool Wanted(uint32_t v);
-  bool WantedNode(const Node& node) const; // Wanted() of a node (a copy), uncached
   /// Whether a node with this key is split (or kept) at the pixel threshold.
   bool IsWanted(float key) const
   {
