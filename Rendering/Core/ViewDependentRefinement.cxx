@@ -28,6 +28,14 @@ namespace
 {
 constexpr uint32_t None = std::numeric_limits<uint32_t>::max();
 constexpr double Pi = 3.14159265358979323846;
+constexpr int BucketShift = 20; // float bits: sign, exponent, 3 bits of mantissa
+constexpr uint32_t Buckets = 1u << (32 - BucketShift);
+inline uint32_t BucketOf(float key)
+{
+  uint32_t bits;
+  std::memcpy(&bits, &key, sizeof(bits));
+  return key >= 0.0f ? bits >> BucketShift : 0; // ordered like the keys (>= 0)
+}
 }
 
 /// View attributes of event e_v (or of a root), packed for the per-frame sweep
@@ -355,6 +363,9 @@ void ViewDependentRefinement::InitializeImpl(
   // Each vertex enters a budget heap once per update, plus re-offers after
   // undone overshoots (bounded below by the capacity check).
   this->SplitHeap.assign(4 * size_t(n) + 64, HeapEntry{});
+  this->Pending.assign(n, HeapEntry{});
+  this->Sorted.assign(n, HeapEntry{});
+  this->BucketStart.assign(Buckets + 1, 0);
   this->MergeHeap.assign(4 * size_t(n) + 64, HeapEntry{});
   this->SplitLog.assign(n, 0);
   this->TradeLog.assign(n, 0);
@@ -1327,6 +1338,58 @@ void ViewDependentRefinement::OfferSplit(uint32_t w)
   }
 }
 
+void ViewDependentRefinement::SortPending(uint32_t size)
+{
+  // Counting sort by bucket into Sorted; afterwards BucketStart[b] is where
+  // bucket b ends (and b + 1 starts).
+  uint32_t* start = this->BucketStart.data();
+  std::fill(start, start + Buckets + 1, 0u);
+  for (uint32_t i = 0; i < size; ++i)
+  {
+    ++start[BucketOf(this->Pending[i].Key) + 1];
+  }
+  for (uint32_t b = 0; b < Buckets; ++b)
+  {
+    start[b + 1] += start[b];
+  }
+  for (uint32_t i = 0; i < size; ++i)
+  {
+    this->Sorted[start[BucketOf(this->Pending[i].Key)]++] = this->Pending[i];
+  }
+  this->PendingEnd = size;
+  this->SplitFloor = std::numeric_limits<float>::infinity();
+}
+
+void ViewDependentRefinement::ReachSplitTop()
+{
+  // What is not taken yet, Sorted[0, PendingEnd), lies in lower buckets, so
+  // below SplitFloor: the top may be popped when it is not below it.
+  HeapEntry* split = this->SplitHeap.data();
+  while (this->PendingEnd > 0 && (this->SplitSize == 0 || split[0].Key < this->SplitFloor))
+  {
+    const uint32_t bucket = BucketOf(this->Sorted[this->PendingEnd - 1].Key);
+    const uint32_t first = bucket > 0 ? this->BucketStart[bucket - 1] : 0;
+    const uint32_t count = this->PendingEnd - first;
+    const uint32_t bits = bucket << BucketShift;
+    std::memcpy(&this->SplitFloor, &bits, sizeof(bits));
+    this->PendingEnd = first;
+    std::memcpy(split + this->SplitSize, this->Sorted.data() + first, count * sizeof(HeapEntry));
+    if (count > this->SplitSize)
+    {
+      this->SplitSize += count;
+      std::make_heap(split, split + this->SplitSize, SplitOrder());
+    }
+    else
+    {
+      for (uint32_t i = 0; i < count; ++i)
+      {
+        ++this->SplitSize;
+        std::push_heap(split, split + this->SplitSize, SplitOrder());
+      }
+    }
+  }
+}
+
 void ViewDependentRefinement::OfferMerge(uint32_t v)
 {
   if (v == None || this->Touched[v] == this->TouchFrame || this->MergeSize == this->MergeHeap.size() ||
@@ -1385,6 +1448,12 @@ const RefinementStatistics& ViewDependentRefinement::UpdateBudget(
 
   HeapEntry* split = this->SplitHeap.data();
   HeapEntry* merge = this->MergeHeap.data();
+  // The candidates' keys (or bounds) go to Pending, sorted into key buckets
+  // (float bits: 8 per octave); the split heap takes a bucket only when its
+  // top could be below the bucket's keys (ReachSplitTop()), so most of them
+  // are never heapified.
+  HeapEntry* pending = this->Pending.data();
+  uint32_t pendingSize = 0;
   this->SplitSize = 0;
   for (uint32_t i = 0; i < this->SplitListSize; ++i)
   {
@@ -1399,7 +1468,7 @@ const RefinementStatistics& ViewDependentRefinement::UpdateBudget(
       const double bound = this->KeyBound(e.Data, e.Factor);
       if (!(this->PixelThreshold > 0.0 && bound <= this->PixelThreshold))
       {
-        split[this->SplitSize++] = HeapEntry{ static_cast<float>(bound), e.Id << 1 };
+        pending[pendingSize++] = HeapEntry{ static_cast<float>(bound), e.Id << 1 };
       }
       continue;
     }
@@ -1408,10 +1477,10 @@ const RefinementStatistics& ViewDependentRefinement::UpdateBudget(
     this->Doze(e, sleep);
     if (this->IsWanted(key))
     {
-      split[this->SplitSize++] = HeapEntry{ key, (e.Id << 1) | 1 };
+      pending[pendingSize++] = HeapEntry{ key, (e.Id << 1) | 1 };
     }
   }
-  std::make_heap(split, split + this->SplitSize, SplitOrder());
+  this->SortPending(pendingSize);
   this->MergeSize = 0;
   for (uint32_t i = 0; i < this->MergeListSize; ++i)
   {
@@ -1491,6 +1560,7 @@ const RefinementStatistics& ViewDependentRefinement::UpdateBudget(
       this->Merge(m);
       continue;
     }
+    this->ReachSplitTop();
     if (this->SplitSize == 0)
     {
       break;

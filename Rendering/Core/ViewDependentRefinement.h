@@ -270,6 +270,8 @@ private:
   // v, with its current priority.
   void OfferSplit(uint32_t w);
   void OfferMerge(uint32_t v);
+  void SortPending(uint32_t size);
+  void ReachSplitTop();
 
   /// What Split() and Merge() must tell the running update about new candidates.
   enum class UpdateMode
@@ -351,6 +353,12 @@ private:
   // Budget heaps (lazy: entries are checked when they reach the top).
   std::vector<HeapEntry> SplitHeap, MergeHeap;
   uint32_t SplitSize = 0, MergeSize = 0;
+  // Split candidates of the sweep by key bucket, taken into SplitHeap from the
+  // top bucket down as needed (SortPending(), ReachSplitTop()).
+  std::vector<HeapEntry> Pending, Sorted;
+  std::vector<uint32_t> BucketStart;
+  uint32_t PendingEnd = 0;  // not taken yet: Sorted[0, PendingEnd)
+  float SplitFloor = 0.0f;  // every entry not taken is below it
   std::vector<uint32_t> SplitLog; // splits of the current forced split, to undo an overshoot
   uint32_t SplitLogSize = 0;
   std::vector<uint32_t> TradeLog; // merges of the running trade, to undo a failed one
