@@ -1106,13 +1106,20 @@ void CollapseEngine::ApplyCollapse(uint32_t u, uint32_t w)
   const uint32_t ringBase = this->NextStampBase();
   this->Ring.clear();
   rw.Mark = ringBase;
+  this->Soon.clear();
   auto addToRing = [&](uint32_t x) {
-    uint32_t& m = this->Vertices[x].Mark;
-    if (m != ringBase)
+    Vertex& rx = this->Vertices[x];
+    if (rx.Mark != ringBase)
     {
-      m = ringBase;
+      rx.Mark = ringBase;
       this->Ring.push_back(x);
       Prefetch(&this->Quadrics[x]); // for the update of its candidates below
+      if (rx.Target == u || (rx.State & BlockedBit) || rx.Kind == KindCurve)
+      {
+        // Probably re-evaluated below: its fan is fetched over this collapse.
+        this->Soon.push_back(x);
+        Prefetch(this->Pool.data() + rx.AdjStart);
+      }
     }
   };
   this->Merges.clear();
@@ -1195,6 +1202,15 @@ void CollapseEngine::ApplyCollapse(uint32_t u, uint32_t w)
   }
 
   this->PrefetchCollapse(nextTop, 2);
+  for (uint32_t x : this->Soon)
+  {
+    const Vertex& rx = this->Vertices[x];
+    const uint32_t* list = this->Pool.data() + rx.AdjStart;
+    for (uint32_t i = 0; i < rx.AdjCount; ++i)
+    {
+      Prefetch(&this->Tris[list[i] >> 2]);
+    }
+  }
 
   // Quadrics and the error of this step.
   QuadricRecord& qu = this->Quadrics[u];
@@ -1233,6 +1249,16 @@ void CollapseEngine::ApplyCollapse(uint32_t u, uint32_t w)
   }
 
   this->PrefetchCollapse(nextTop, 3);
+  for (uint32_t x : this->Soon)
+  {
+    const Vertex& rx = this->Vertices[x];
+    const uint32_t* list = this->Pool.data() + rx.AdjStart;
+    for (uint32_t i = 0; i < rx.AdjCount; ++i)
+    {
+      const Tri& tri = this->Tris[list[i] >> 2];
+      Prefetch(&this->Vertices[tri.V[Next3(list[i] & 3u)]]);
+    }
+  }
 
   // w: new quadric and new neighbours, so a fresh best target. Blocked
   // vertices around w are retried, since the legality of their collapses
@@ -1474,6 +1500,7 @@ void CollapseEngine::BeginCollapses()
   this->KillStart.reserve(this->N);
   this->KillList.reserve(this->T);
   this->Ring.reserve(64);
+  this->Soon.reserve(64);
   this->Scratch.reserve(64);
 
   const double maxDeviation = this->Options.MaximumNormalDeviation;

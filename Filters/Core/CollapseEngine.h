@@ -915,6 +915,7 @@ private:
   uint32_t Stamp = 0;
   std::vector<Candidate> Scratch;
   std::vector<uint32_t> Ring;  // u's neighbours during a collapse
+  std::vector<uint32_t> Soon;  // those of them probably re-evaluated
   std::vector<uint32_t> Retry; // blocked vertices around w during a collapse
   std::vector<uint32_t> Orphans;
   std::vector<uint32_t> BlockedList;
