@@ -854,7 +854,7 @@ uint32_t ViewDependentRefinement::NextRequirement(uint32_t v, uint8_t& stage, ui
         return u;
       }
       stage = 1;
-      // fall through
+      [[fallthrough]];
     case 1:
     {
       const uint32_t sibling = this->NextChild(u);
@@ -873,7 +873,7 @@ uint32_t ViewDependentRefinement::NextRequirement(uint32_t v, uint8_t& stage, ui
       index = this->Link[v].NeedBegin;
       stage = 2;
     }
-      // fall through
+      [[fallthrough]];
     default:
       for (const uint32_t end = this->Link[v].NeedEnd; index < end; ++index)
       {
