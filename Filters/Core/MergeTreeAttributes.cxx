@@ -87,6 +87,20 @@ Cone MergeCones(const Cone& c1, const Cone& c2)
   return { axis, std::min(Pi, angle + ConeSlack) };
 }
 
+/// Writes a node's cone. An axis that is not a unit vector (face normals
+/// that overflow or underflow on extreme coordinates: found by fuzzing) gives
+/// the whole sphere, which bounds every normal, instead of a cone that lies.
+void StoreCone(MergeTree& tree, uint32_t v, const Cone& cone)
+{
+  const double length = Norm(cone.Axis);
+  const bool whole = cone.Angle >= Pi || !(std::abs(length - 1.0) < 1e-6);
+  float* axis = &tree.ConeAxis[3 * size_t(v)];
+  axis[0] = whole ? 0.0f : static_cast<float>(cone.Axis.X);
+  axis[1] = whole ? 0.0f : static_cast<float>(cone.Axis.Y);
+  axis[2] = whole ? 1.0f : static_cast<float>(cone.Axis.Z);
+  tree.ConeCosine[v] = whole ? -1.0f : static_cast<float>(std::cos(cone.Angle));
+}
+
 /// Squared distance from p to triangle abc (closest-point regions).
 /// ab = b - a, ac = c - a, ap = p - a (given: the caller has them).
 double PointTriangleDistance2(const Vec& p, const Vec& b, const Vec& c, const Vec& ab,
@@ -724,10 +738,7 @@ MergeTree Replay(const TOMMesh& tom, const double* points, const uint32_t* point
       shadingError = shadingWeight * radius * deviation;
     }
     tree.Radius[v] = RoundUp(radius);
-    tree.ConeAxis[3 * size_t(v)] = static_cast<float>(cu.Axis.X);
-    tree.ConeAxis[3 * size_t(v) + 1] = static_cast<float>(cu.Axis.Y);
-    tree.ConeAxis[3 * size_t(v) + 2] = static_cast<float>(cu.Axis.Z);
-    tree.ConeCosine[v] = cu.Angle >= Pi ? -1.0f : static_cast<float>(std::cos(cu.Angle));
+    StoreCone(tree, v, cu);
 
     // Monotone error and depth: e_v needs its previous sibling (the last child
     // merged into u), its own last child, and for each row vertex n the last
@@ -765,10 +776,7 @@ MergeTree Replay(const TOMMesh& tom, const double* points, const uint32_t* point
                                shadingWeight * node[w].Radius * shade[w].Deviation)),
       node[w].ChildError);
     tree.Radius[w] = RoundUp(node[w].Radius);
-    tree.ConeAxis[3 * size_t(w)] = static_cast<float>(cone[w].Axis.X);
-    tree.ConeAxis[3 * size_t(w) + 1] = static_cast<float>(cone[w].Axis.Y);
-    tree.ConeAxis[3 * size_t(w) + 2] = static_cast<float>(cone[w].Axis.Z);
-    tree.ConeCosine[w] = cone[w].Angle >= Pi ? -1.0f : static_cast<float>(std::cos(cone[w].Angle));
+    StoreCone(tree, w, cone[w]);
   }
 
   // Dependency rows in vertex order: the replay wrote them from the last
