@@ -474,17 +474,23 @@ void ViewDependentRefinement::PrepareView()
     this->HighlightRefinement ? this->HighlightFactor : -1.0, this->LightX, this->LightY,
     this->LightZ };
   static_assert(sizeof(settings) == sizeof(this->SleepSettings), "one value per setting");
-  if (std::memcmp(settings, this->SleepSettings, sizeof(settings)) != 0)
+  const double mx = this->EyeX - this->LastEye[0], my = this->EyeY - this->LastEye[1],
+               mz = this->EyeZ - this->LastEye[2];
+  const double step = std::sqrt(mx * mx + my * my + mz * mz);
+  if (std::memcmp(settings, this->SleepSettings, sizeof(settings)) != 0 || !std::isfinite(step) ||
+    !std::isfinite(this->Odometer + step))
   {
+    this->Odometer = 0.0; // (a non-finite eye would stop it for good)
     std::memcpy(this->SleepSettings, settings, sizeof(settings));
     for (uint32_t i = 0; i < this->SplitListSize; ++i)
     {
       this->SplitList[i].WakeAt = this->SplitList[i].FactorUntil = -1.0;
     }
   }
-  const double mx = this->EyeX - this->LastEye[0], my = this->EyeY - this->LastEye[1],
-               mz = this->EyeZ - this->LastEye[2];
-  this->Odometer += std::sqrt(mx * mx + my * my + mz * mz);
+  else
+  {
+    this->Odometer += step;
+  }
   this->LastEye[0] = this->EyeX;
   this->LastEye[1] = this->EyeY;
   this->LastEye[2] = this->EyeZ;
