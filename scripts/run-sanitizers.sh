@@ -17,7 +17,7 @@
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${TIMECRITICAL_ASAN_BUILD_DIR:-$root/build-asan}"
-timing_tests='^(MergeTreeAttributes\.Speed|WeldPoints\.LargeMeshIsFast)$'
+timing_tests='^(MergeTreeAttributes\.Speed|WeldPoints\.LargeMeshIsFast|ActiveSetOptimizer\.HonoursTinyTimeLimits)$'
 mkdir -p "$build"
 
 # -O1 -g1 compiles about three times faster than -O2 -g (the tests of the VTK
@@ -30,4 +30,11 @@ nice -n 10 cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
 # (gtest_discover_tests runs the instrumented executables at build time.)
 nice -n 10 cmake --build "$build" -j "$(nproc)" --target timecritical_cxx_tests
 cd "$build"
-nice -n 10 ctest --output-on-failure -j "$(nproc)" -L 'core|vtk' -LE python -E "$timing_tests" "$@"
+# The rendering tests one at a time: some check frame times their renderer
+# measured, which a second instrumented test rendering next to them can skew
+# (seen once: ViewDependentRenderer.FixedAccuracyIgnoresTheTargetBudgetFollowsIt).
+status=0
+nice -n 10 ctest --output-on-failure -j "$(nproc)" -L 'core|vtk' -LE 'python|render' \
+  -E "$timing_tests" "$@" || status=$?
+nice -n 10 ctest --output-on-failure -L render -LE python -E "$timing_tests" "$@" || status=$?
+exit $status

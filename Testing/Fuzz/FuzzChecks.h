@@ -34,7 +34,8 @@ namespace timecritical
 {
 namespace fuzz
 {
-[[noreturn]] inline void Fail(const char* file, int line, const char* what, const std::string& detail)
+[[noreturn]] inline void Fail(
+  const char* file, int line, const char* what, const std::string& detail)
 {
   std::fprintf(stderr, "%s:%d: invariant violated: %s (%s)\n", file, line, what, detail.c_str());
   std::fflush(stderr);
@@ -230,7 +231,8 @@ inline void CheckMergeTree(const MergeTreeBuildResult& result, const MeshInput& 
       tree.ConeCosine.size() == n && tree.ConeAxis.size() == 3 * n &&
       tree.DependencyOffsets.size() == n + 1,
     "merge tree arrays sized by the TOM");
-  FUZZ_REQUIRE(tree.DependencyOffsets[0] == 0 && tree.DependencyOffsets[n] == tree.Dependencies.size(),
+  FUZZ_REQUIRE(
+    tree.DependencyOffsets[0] == 0 && tree.DependencyOffsets[n] == tree.Dependencies.size(),
     "dependency offsets span the dependencies");
   for (size_t v = 0; v < n; ++v)
   {
@@ -238,8 +240,10 @@ inline void CheckMergeTree(const MergeTreeBuildResult& result, const MeshInput& 
     const std::string where = "vertex " + std::to_string(v);
     FUZZ_REQUIRE(base ? tree.Level[v] == tree.LevelCount : tree.Level[v] < tree.LevelCount,
       "level of " + where);
-    FUZZ_REQUIRE((std::isfinite(tree.Error[v]) || huge) && tree.Error[v] >= 0.f, "error of " + where);
-    FUZZ_REQUIRE((std::isfinite(tree.Radius[v]) || huge) && tree.Radius[v] >= 0.f, "radius of " + where);
+    FUZZ_REQUIRE(
+      (std::isfinite(tree.Error[v]) || huge) && tree.Error[v] >= 0.f, "error of " + where);
+    FUZZ_REQUIRE(
+      (std::isfinite(tree.Radius[v]) || huge) && tree.Radius[v] >= 0.f, "radius of " + where);
     const float cosine = tree.ConeCosine[v];
     FUZZ_REQUIRE(std::isfinite(cosine) && cosine >= -1.f && cosine <= 1.f, "cone of " + where);
     const float* axis = &tree.ConeAxis[3 * v];

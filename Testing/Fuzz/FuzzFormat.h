@@ -300,7 +300,8 @@ inline std::vector<uint8_t> EncodeMesh(const MeshInput& mesh)
 //------------------------------------------------------------------------------
 // Views (fuzz_refine's tail)
 
-/// One update of fuzz_refine: a view and how to update (29 f32 + 3 u8 + u32 + u16 in the tail).
+/// One update of fuzz_refine: a view and how to update
+/// (3 u8, u32, u16, 13 f32, then 4 f32 per frustum plane).
 struct ViewInput
 {
   uint8_t Mode = 0;   ///< bit 0: budget update (else fixed accuracy); bit 1: parallel projection

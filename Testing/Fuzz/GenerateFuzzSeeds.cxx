@@ -42,7 +42,8 @@ void MakeFolder(const std::string& path)
 void WriteSeed(const std::string& path, const std::vector<uint8_t>& bytes)
 {
   std::ofstream out(path, std::ios::binary);
-  out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+  out.write(
+    reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
   if (!out)
   {
     throw std::runtime_error("cannot write " + path);
@@ -108,7 +109,8 @@ TriangleMesh CutPiece(const TriangleMesh& mesh, const EdgeMap& edges, size_t sta
       if (it == ids.end())
       {
         it = ids.emplace(p, static_cast<uint32_t>(ids.size())).first;
-        piece.Points.insert(piece.Points.end(), &mesh.Points[3 * size_t(p)], &mesh.Points[3 * size_t(p)] + 3);
+        const double* xyz = &mesh.Points[3 * size_t(p)];
+        piece.Points.insert(piece.Points.end(), xyz, xyz + 3);
       }
       piece.Triangles.push_back(it->second);
     }
@@ -185,7 +187,8 @@ std::vector<uint8_t> RefineTail(const TriangleMesh& piece)
 std::vector<uint8_t> TOMSeed(const TriangleMesh& piece)
 {
   const TOMBuildResult built =
-    TOMBuilder().Build(piece.Points.data(), piece.NumberOfPoints(), piece.Triangles.data(), piece.NumberOfTriangles());
+    TOMBuilder().Build(piece.Points.data(), piece.NumberOfPoints(), piece.Triangles.data(),
+      piece.NumberOfTriangles());
   TOMInput tom;
   tom.Substitution = built.Mesh.Substitution;
   tom.Triangles = built.Mesh.Triangles;
@@ -216,12 +219,14 @@ struct Counts
   size_t Bytes = 0;
 };
 
-void WritePiece(const std::string& output, const std::string& name, const TriangleMesh& piece, Counts& counts)
+void WritePiece(
+  const std::string& output, const std::string& name, const TriangleMesh& piece, Counts& counts)
 {
   const uint8_t base = PreserveBoundaries | PreserveFeatureEdges;
   const std::vector<std::pair<std::string, std::vector<uint8_t>>> seeds = {
     { "fuzz_builder/" + name + "-tom", EncodeMesh(ToMeshInput(piece, base)) },
-    { "fuzz_builder/" + name + "-merge", EncodeMesh(ToMeshInput(piece, base | SliverRejection | TargetBit0)) },
+    { "fuzz_builder/" + name + "-merge",
+      EncodeMesh(ToMeshInput(piece, base | SliverRejection | TargetBit0)) },
     { "fuzz_tom/" + name, TOMSeed(piece) },
   };
   for (const auto& seed : seeds)

@@ -49,7 +49,8 @@ void CheckFrontBasics(const ViewDependentRefinement& vdr, const TOMMesh& tom, ui
   FUZZ_REQUIRE(stats.DisplayTriangles == count, "statistics count the display triangles");
   FUZZ_REQUIRE(stats.DisplayVertices == vdr.GetNumberOfDisplayVertices(),
     "statistics count the display vertices");
-  FUZZ_REQUIRE(count <= tom.GetNumberOfTriangles(), "at most one display triangle per TOM triangle");
+  FUZZ_REQUIRE(
+    count <= tom.GetNumberOfTriangles(), "at most one display triangle per TOM triangle");
   const uint32_t* triangles = vdr.GetTriangles();
   const uint32_t* ids = vdr.GetTriangleIds();
   for (size_t i = 0; i < 3 * size_t(count); ++i)
@@ -289,7 +290,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
     FUZZ_REQUIRE(corrupted, std::string("the builder's merge tree was rejected: ") + e.what());
     return 0;
   }
-  FUZZ_REQUIRE(vdr.GetNumberOfVertices() == n && vdr.GetNumberOfBaseVertices() == tom.BaseVertexCount,
+  FUZZ_REQUIRE(
+    vdr.GetNumberOfVertices() == n && vdr.GetNumberOfBaseVertices() == tom.BaseVertexCount,
     "refinement sizes");
   if (!corrupted)
   {
