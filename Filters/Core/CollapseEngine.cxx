@@ -1094,10 +1094,11 @@ void CollapseEngine::ApplyCollapse(uint32_t u, uint32_t w)
   this->SubstituteOf[u] = w;
   this->KillStart.push_back(static_cast<uint32_t>(this->KillList.size()));
   this->HeapRemove(u);
-  // The next collapse most likely starts from the new top of the heap (or
-  // the schedule's hint): fetch its data while this one is being applied.
+  // The next collapse most likely starts from the new top of the heap:
+  // fetch its data while this one is being applied. (Schedules without a
+  // heap see further ahead and prefetch themselves: PrefetchCandidate.)
   const uint32_t nextTop =
-    this->UseHeap ? (this->Heap.Empty() ? Invalid : this->Heap.Top().Vertex) : this->PrefetchHint;
+    this->UseHeap && !this->Heap.Empty() ? this->Heap.Top().Vertex : Invalid;
   this->PrefetchCollapse(nextTop, 0);
 
   // Triangles around u: those on the edge die, the others now use w (in the

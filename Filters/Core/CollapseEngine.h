@@ -707,8 +707,6 @@ public:
   /// line (uninitialised).
   uint32_t& Tag(uint32_t v) { return this->Vertices[v].Tag; }
   uint8_t& TagByte(uint32_t v) { return this->Vertices[v].TagByte; }
-  /// Without a heap: the vertex whose collapse probably comes next, prefetched meanwhile.
-  void SetPrefetchHint(uint32_t v) { this->PrefetchHint = v; }
   /// Without a heap: stage 0-5 of the prefetch of v's collapse into its
   /// target (v's record; lists; triangles; neighbours; quadrics), each stage
   /// reading what the earlier ones fetched, for schedules that see several
@@ -906,7 +904,6 @@ private:
 
   IndexedHeap Heap;
   const bool UseHeap;
-  uint32_t PrefetchHint = Invalid;
   int CurrentLevel = LevelAll;
   double CosMaxDeviation = 0.0;
   bool NormalCheckEnabled = true;

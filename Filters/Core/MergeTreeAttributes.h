@@ -48,9 +48,12 @@ struct MergeTreeErrorOptions
  * vertex (level of the collapse that removed it), or null to derive levels
  * from the dependency depth. Throws std::invalid_argument on an invalid TOM.
  * Linear time, one pass over the collapses; bound by cache misses on the
- * scattered TOM order (igea after one Loop subdivision, one core, validation
- * included: ~0.37 s per million triangles, ~0.40 with a shading weight);
- * work memory about 176 bytes per vertex and 50 per triangle.
+ * scattered TOM order, hidden by prefetching the next events' data (igea
+ * after one Loop subdivision, one core, validation included: ~0.38 s per
+ * million triangles with the default shading weight; MergeTreeBuilder's own
+ * path, detail::ComputeBuiltMergeTree, ~0.30); work memory about 148 bytes
+ * per vertex and 28 per triangle (MergeTreeBuilder: mostly its engine's
+ * finished arrays). At most 2^30 triangles.
  */
 TIMECRITICALFILTERSCORE_EXPORT MergeTree ComputeMergeTree(const TOMMesh& tom,
   const double* points, const uint16_t* levels, const MergeTreeErrorOptions& options = {});

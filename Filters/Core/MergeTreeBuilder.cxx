@@ -40,6 +40,11 @@
  * and feature constraints early, which shortens the tree by a fifth; the
  * geometric checks are only relaxed once nothing is legal.
  *
+ * Collapses in key order jump around the mesh: what costs is waiting on
+ * memory. The sorted list shows the next collapses, so their data is fetched
+ * several collapses ahead (PrefetchAhead), and once the levels are done the
+ * engine's arrays are reused by ComputeMergeTree (no fresh pages to fault in).
+ *
  * The cost cap (MergeTreeBuildOptions::LevelCostRatio) ends a level early,
  * once the next candidate costs too much more than where the greedy order
  * would be after as many collapses. The untried rest of the list (and the
@@ -182,7 +187,7 @@ private:
   size_t RestStart = 0;        // Current[RestStart..]: left untried by a capped level
   std::vector<Entry> Requeued; // min-heap: legal alternatives costlier than their turn
   std::vector<Entry> Next;     // fresh entries of the touched vertices
-  size_t CollapseEntries = 0;  // Next's size before the collapse being applied
+  size_t CollapseEntries = 0;  // Next's size when the touches of the latest collapse began
   std::vector<Entry> Deferred; // untouched vertices whose target is touched, and the
                                // re-queued ones a capped level left
   std::vector<Entry> Fresh;    // next level's entries besides the untried rest
