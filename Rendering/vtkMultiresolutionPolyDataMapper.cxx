@@ -1248,18 +1248,13 @@ void vtkMultiresolutionPolyDataMapper::RefineObjects(vtkRenderer* ren, vtkActor*
   view.NumberOfFrustumPlanes = 6;
   for (int i = 0; i < 6; ++i)
   {
-    // A plane p (world) is p M in object coordinates; renormalized so that
-    // distances stay in object units.
+    // A plane p (world) is p M in object coordinates (the refinement
+    // normalizes it).
     double* o = view.FrustumPlanes[i];
     for (int c = 0; c < 4; ++c)
     {
       o[c] = planes[4 * i] * model[c] + planes[4 * i + 1] * model[4 + c] +
         planes[4 * i + 2] * model[8 + c] + planes[4 * i + 3] * model[12 + c];
-    }
-    const double norm = std::sqrt(o[0] * o[0] + o[1] * o[1] + o[2] * o[2]);
-    for (int c = 0; c < 4; ++c)
-    {
-      o[c] = norm > 0.0 ? o[c] / norm : 0.0;
     }
   }
   // Towards the first switched-on light; a headlight when there is none.

@@ -321,6 +321,7 @@ void ViewDependentRefinement::InitializeImpl(
   {
     this->Link[this->Children[slot]].Slot = slot;
   }
+  this->MakePrioritiesMonotone();
   // Needs: per vertex, the events of Rev[parent] between its previous sibling
   // and it, then its row; the full rows and their transpose are dropped.
   this->Needs.clear();
@@ -370,6 +371,99 @@ void ViewDependentRefinement::InitializeImpl(
   this->SplitLog.assign(n, 0);
   this->TradeLog.assign(n, 0);
   this->Reset();
+}
+
+//------------------------------------------------------------------------------
+/*
+ * Fixed-accuracy fronts depend on the view only if a wanted event is reached
+ * from the coarsest front, i.e. if the events that must be split before it
+ * are wanted too: its previous sibling (same centre) and, for a first child,
+ * its parent's event. The builder nests them (spheres around the parent,
+ * cumulative cones, monotone errors), so priorities cannot grow along that
+ * order in exact arithmetic, but float storage and rounding can make a
+ * tangent child poke out by an ulp, and then a grazing frustum plane, the
+ * eye or a silhouette tips the order. Here each such predecessor is widened
+ * to hold its successor with a margin far above the rounding of Evaluate()
+ * (relative 1e-5 of the radii, 1e-6 rad of the cones; double arithmetic
+ * errs by ~1e-15 of the coordinates, and distinct float points are at least
+ * ~6e-8 of them apart), which only makes the bounds more conservative. From
+ * the finest event down, so each widened node is then held by its own
+ * predecessor. Also sets the default near distance, which must be one for
+ * all nodes for the same reason.
+ */
+void ViewDependentRefinement::MakePrioritiesMonotone()
+{
+  constexpr double RadiusMargin = 1e-5;
+  constexpr double AngleMargin = 1e-6;
+  auto atLeast = [](double x) {
+    float f = static_cast<float>(x);
+    return static_cast<double>(f) < x ? std::nextafter(f, std::numeric_limits<float>::infinity()) : f;
+  };
+  auto angle = [](const Node& node) {
+    return node.Cos <= -1.0f ? Pi : std::atan2(static_cast<double>(node.Sin), static_cast<double>(node.Cos));
+  };
+  for (uint32_t slot = this->N - this->B; slot-- > 0;)
+  {
+    const uint32_t v = this->Children[slot];
+    const uint32_t u = this->Parent[v];
+    uint32_t predecessor = None;
+    if (slot > this->Link[u].ChildBegin)
+    {
+      predecessor = slot - 1; // previous sibling
+    }
+    else if (u >= this->B)
+    {
+      predecessor = this->Link[u].Slot; // parent's event
+    }
+    if (predecessor == None)
+    {
+      continue; // first child of a base vertex: a candidate of every front
+    }
+    const Node& s = this->Nodes[slot];
+    Node& d = this->Nodes[predecessor];
+    d.Error = std::max(d.Error, s.Error);
+    double gap2 = 0.0, axisDot = 0.0, sLength2 = 0.0, dLength2 = 0.0;
+    for (int i = 0; i < 3; ++i)
+    {
+      const double delta = static_cast<double>(s.Center[i]) - d.Center[i];
+      gap2 += delta * delta;
+      axisDot += static_cast<double>(s.Axis[i]) * d.Axis[i];
+      sLength2 += static_cast<double>(s.Axis[i]) * s.Axis[i];
+      dLength2 += static_cast<double>(d.Axis[i]) * d.Axis[i];
+    }
+    const double radius = (std::sqrt(gap2) + s.Radius) * (1.0 + RadiusMargin);
+    if (radius > d.Radius)
+    {
+      d.Radius = atLeast(radius);
+    }
+    if (d.Cos > -1.0f)
+    {
+      // Angle between the axes (not quite unit as floats).
+      const double lengths = std::sqrt(sLength2 * dLength2);
+      const double cosine = lengths > 0.0 ? std::max(-1.0, std::min(1.0, axisDot / lengths)) : -1.0;
+      const double needed = std::acos(cosine) + angle(s) + AngleMargin;
+      if (needed >= Pi)
+      {
+        d.Cos = -1.0f; // the whole sphere of directions
+        d.Sin = 0.0f;
+      }
+      else if (needed > angle(d))
+      {
+        d.Cos = static_cast<float>(std::cos(needed));
+        d.Sin = static_cast<float>(std::sin(needed));
+      }
+    }
+  }
+  float largest = 0.0f;
+  for (uint32_t v = 0; v < this->B; ++v)
+  {
+    const uint32_t slot = this->Link[v].ChildBegin;
+    if (slot < this->Link[v].ChildEnd)
+    {
+      largest = std::max(largest, this->Nodes[slot].Radius); // a root's first event holds it all
+    }
+  }
+  this->DefaultNear = largest > 0.0f ? 1e-3 * largest : 1e-30;
 }
 
 //------------------------------------------------------------------------------
@@ -444,14 +538,38 @@ void ViewDependentRefinement::PrepareView()
     const double angle = std::min(179.0, std::max(1e-3, v.ViewAngle)) * Pi / 180.0;
     this->PixelsPerUnit = height / (2.0 * std::tan(0.5 * angle));
   }
-  this->PlaneCount = std::max(0, std::min(6, v.NumberOfFrustumPlanes));
-  for (int i = 0; i < 8; ++i)
+  // Bounded so that an error times it stays finite: no priority is then
+  // infinity over infinity (NaN would be unwanted while a smaller error,
+  // projected as 0, is wanted).
+  this->PixelsPerUnit = std::min(this->PixelsPerUnit, 1e30);
+  // An eye (perspective) or direction (parallel) that is not finite gives
+  // no view: every node counts as culled, so the front is the coarsest.
+  this->BrokenView = v.Parallel
+    ? !(std::isfinite(this->DirX) && std::isfinite(this->DirY) && std::isfinite(this->DirZ))
+    : !(std::isfinite(this->EyeX) && std::isfinite(this->EyeY) && std::isfinite(this->EyeZ));
+  // Normalized, so that a x + b y + c z + d is a distance to compare with
+  // radii; planes without a usable normal are left out.
+  this->PlaneCount = 0;
+  for (int i = 0; i < std::min(6, v.NumberOfFrustumPlanes); ++i)
+  {
+    const double* plane = v.FrustumPlanes[i];
+    const double norm =
+      std::sqrt(plane[0] * plane[0] + plane[1] * plane[1] + plane[2] * plane[2]);
+    if (norm > 0.0 && std::isfinite(norm) && std::isfinite(plane[3]))
+    {
+      for (int k = 0; k < 4; ++k)
+      {
+        this->Planes[k][this->PlaneCount] = plane[k] / norm;
+      }
+      ++this->PlaneCount;
+    }
+  }
+  for (int i = this->PlaneCount; i < 8; ++i)
   {
     for (int k = 0; k < 4; ++k)
     {
       // Unused: 0 x + 0 y + 0 z + max >= -r, never outside.
-      this->Planes[k][i] = i < this->PlaneCount ? static_cast<float>(v.FrustumPlanes[i][k])
-                                                : (k == 3 ? std::numeric_limits<float>::max() : 0.0f);
+      this->Planes[k][i] = k == 3 ? std::numeric_limits<double>::max() : 0.0;
     }
   }
   // Smallest threshold factor any node can get (SurelyUnwanted()).
@@ -514,20 +632,24 @@ TIMECRITICAL_NOINLINE double ViewDependentRefinement::Evaluate(const Node& node,
   }
   const double cx = node.Center[0], cy = node.Center[1], cz = node.Center[2];
   const double r = node.Radius;
+  if (this->BrokenView)
+  {
+    return -1.0;
+  }
   if (this->PlaneCount > 0)
   {
-    // Wholly outside a plane (float: a node grazing a plane may go either way).
-    // Written as two plain loops so that compilers vectorize them.
-    float distance[8];
+    // Wholly outside a plane. Written as two plain loops so that compilers
+    // vectorize them.
+    double distance[8];
     for (int i = 0; i < 8; ++i)
     {
-      distance[i] = this->Planes[0][i] * node.Center[0] + this->Planes[1][i] * node.Center[1] +
-        this->Planes[2][i] * node.Center[2] + this->Planes[3][i] + node.Radius;
+      distance[i] = this->Planes[0][i] * cx + this->Planes[1][i] * cy + this->Planes[2][i] * cz +
+        this->Planes[3][i] + r;
     }
     int outside = 0;
     for (int i = 0; i < 8; ++i)
     {
-      outside |= distance[i] < 0.0f;
+      outside |= distance[i] < 0.0;
     }
     if (outside != 0)
     {
@@ -548,21 +670,21 @@ TIMECRITICAL_NOINLINE double ViewDependentRefinement::Evaluate(const Node& node,
     dy = cy - this->EyeY;
     dz = cz - this->EyeZ;
     dist = std::sqrt(dx * dx + dy * dy + dz * dz);
-    if (!(node.Error > 0.0f))
+    if (!(node.Error > 0.0f) && this->PixelThreshold > 0.0)
     {
-      if (sleep != nullptr && this->PixelThreshold > 0.0)
+      // Key 0, unwanted as if culled. (At tau = 0 key 0 is wanted, so the
+      // culling tests below decide, as for its coarser nodes.)
+      if (sleep != nullptr)
       {
-        sleep->Wake = std::numeric_limits<double>::infinity(); // key 0 until the settings change
+        sleep->Wake = std::numeric_limits<double>::infinity(); // until the settings change
       }
       return 0.0;
     }
     // The node's surface is at least dist - r away, and nothing nearer than
     // the near plane is drawn: project from the larger of the two, so that a
     // node around the eye gets a large but finite priority (a huge tau still
-    // gives the coarsest mesh). Without a near plane: 1/1000 of the node's size.
-    const double nearPlane = this->View.NearDistance > 0.0
-      ? this->View.NearDistance
-      : 1e-3 * std::max(static_cast<double>(r), static_cast<double>(node.Error));
+    // gives the coarsest mesh).
+    const double nearPlane = this->NearPlane();
     projected = node.Error * this->PixelsPerUnit / std::max(dist - r, nearPlane);
     if (dist <= r)
     {
@@ -688,9 +810,7 @@ double ViewDependentRefinement::KeyBound(const Node& node, float factor) const
   {
     return std::numeric_limits<double>::infinity();
   }
-  const double nearPlane = this->View.NearDistance > 0.0
-    ? this->View.NearDistance
-    : 1e-3 * std::max(r, static_cast<double>(node.Error));
+  const double nearPlane = this->NearPlane();
   return node.Error * this->PixelsPerUnit / std::max(dist - r, nearPlane) / factor * (1.0 + 1e-6);
 }
 
@@ -743,9 +863,7 @@ bool ViewDependentRefinement::SurelyUnwanted(const Node& node) const
     return reach <= 1.0;
   }
   const double r = node.Radius;
-  const double nearPlane = this->View.NearDistance > 0.0
-    ? this->View.NearDistance
-    : 1e-3 * std::max(r, error);
+  const double nearPlane = this->NearPlane();
   if (reach <= nearPlane)
   {
     return true;

@@ -24,7 +24,11 @@ struct RefinementView
   double ViewportHeight = 512.0;            ///< pixels
   double ViewAngle = 30.0;                  ///< vertical field of view, degrees (perspective)
   double ParallelScale = 1.0;               ///< half the viewport height in world units (parallel)
-  /// Up to 6 planes a x + b y + c z + d >= 0 inside; nodes wholly outside one are not refined.
+  /**
+   * Up to 6 planes a x + b y + c z + d >= 0 inside; nodes wholly outside one
+   * are not refined. Any scale (normalized internally); a plane whose normal
+   * (a, b, c) is zero or not finite is ignored.
+   */
   int NumberOfFrustumPlanes = 0;
   double FrustumPlanes[6][4] = {};
   /// Direction towards the first light (normalized internally); used by highlight refinement.
@@ -34,7 +38,8 @@ struct RefinementView
    * smallest distance at which an error is projected: nothing nearer is drawn.
    * A node whose bounding sphere holds the eye is thus projected from this
    * distance instead of getting an infinite priority. 0 (default): 1/1000 of
-   * the node's radius (VTK's near/far clipping tolerance applied to the node).
+   * the object's radius (VTK's near/far clipping tolerance applied to the
+   * object; one distance for all nodes keeps the priorities monotone).
    */
   double NearDistance = 0.0;
 };
@@ -131,19 +136,22 @@ public:
 
   //@{
   /// Near silhouettes (normal cone holds directions perpendicular to the view)
-  /// the threshold is multiplied by SilhouetteFactor (in (0, 1], default 0.25).
+  /// the threshold is multiplied by SilhouetteFactor (in (0, 1], default 0.25;
+  /// above 1 counts as 1: a coarser silhouette would break the monotone
+  /// priorities that make fixed-accuracy fronts independent of history).
   void SetSilhouetteRefinement(bool on) { this->SilhouetteRefinement = on; }
   bool GetSilhouetteRefinement() const { return this->SilhouetteRefinement; }
-  void SetSilhouetteFactor(double f) { this->SilhouetteFactor = f; }
+  void SetSilhouetteFactor(double f) { this->SilhouetteFactor = f > 1.0 ? 1.0 : f; }
   double GetSilhouetteFactor() const { return this->SilhouetteFactor; }
   //@}
 
   //@{
   /// Near highlights (cone of reflection vectors of the light holds the
-  /// direction to the eye) the threshold is multiplied by HighlightFactor.
+  /// direction to the eye) the threshold is multiplied by HighlightFactor
+  /// (in (0, 1], default 0.25; above 1 counts as 1, as for silhouettes).
   void SetHighlightRefinement(bool on) { this->HighlightRefinement = on; }
   bool GetHighlightRefinement() const { return this->HighlightRefinement; }
-  void SetHighlightFactor(double f) { this->HighlightFactor = f; }
+  void SetHighlightFactor(double f) { this->HighlightFactor = f > 1.0 ? 1.0 : f; }
   double GetHighlightFactor() const { return this->HighlightFactor; }
   //@}
 
@@ -226,7 +234,14 @@ private:
 
   template <typename T>
   void InitializeImpl(const TOMMesh& tom, const MergeTree& tree, const T* points);
+  /// Widens nodes so that priorities never grow down the split order (see .cxx).
+  void MakePrioritiesMonotone();
   void PrepareView();
+  /// Distance below which errors are not projected closer (RefinementView::NearDistance).
+  double NearPlane() const
+  {
+    return this->View.NearDistance > 0.0 ? this->View.NearDistance : this->DefaultNear;
+  }
   /// Starts a new update: frame stamps (priority cache, queues) move on.
   void NextFrame();
   /// Projected error of event v over its local threshold factor; negative when culled.
@@ -404,6 +419,7 @@ private:
   double DirX = 0, DirY = 0, DirZ = -1;
   double LightX = 0, LightY = 0, LightZ = 1;
   double PixelsPerUnit = 1.0; // parallel: per world unit; perspective: times distance
+  bool BrokenView = false;    // eye or direction not finite: everything culled
   double MinimumFactor = 1.0; // smallest threshold factor (silhouette, highlight)
   double UnwantedScale = 0.0; // PixelsPerUnit / (MinimumFactor * tau * (1 - 1e-6)); 0: none
   // Candidate sleep (see PrepareView()): the eye's path length, its last
@@ -411,10 +427,12 @@ private:
   double Odometer = 0.0;
   double LastEye[3] = { 0.0, 0.0, 0.0 };
   double SleepSettings[9] = {};
-  // Frustum planes as x, y, z, w rows of 8 (unused ones never cull): one
-  // branch-free, vectorizable test per node.
+  double DefaultNear = 1e-3; // 1/1000 of the object's radius (Initialize())
+  // Normalized frustum planes as x, y, z, w rows of 8 (unused ones never
+  // cull): one branch-free, vectorizable test per node, in double so that its
+  // rounding stays far below the nesting margin of MakePrioritiesMonotone().
   int PlaneCount = 0;
-  alignas(32) float Planes[4][8] = {};
+  alignas(32) double Planes[4][8] = {};
 
   RefinementStatistics Statistics;
 };

@@ -298,11 +298,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
     CheckFront(vdr, tom);
   }
 
-  bool planesSeen = false;
   for (int update = 0; update < 6 && !in.AtEnd(); ++update)
   {
     const ViewInput view = DecodeView(in);
-    planesSeen = planesSeen || view.Planes % 7 > 0;
     if (view.Reset & 1)
     {
       vdr.Reset();
@@ -341,16 +339,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
       }
       scratch.SetView(MakeView(view));
       scratch.UpdateFixedAccuracy();
-      // Known findings (see FuzzChecks.h), where the incremental front may
-      // differ from the one built from the coarsest front:
-      // 1: see HugeCoordinates();
-      // 2: wing dependencies with silhouette or highlight refinement
-      //    (regressions/fuzz_refine/wing-history);
-      // 3: frustum planes in this or an earlier update
-      //    (regressions/fuzz_refine/frustum-history).
-      const bool knownFinding2 = (settings[1] & 8) && (settings[1] & 6);
-      const bool tolerated =
-        HugeCoordinates(mesh) || (!Strict() && (knownFinding2 || planesSeen));
+      // Known finding (see FuzzChecks.h) where the incremental front may
+      // differ from the one built from the coarsest front: HugeCoordinates().
+      const bool tolerated = HugeCoordinates(mesh);
       for (uint32_t v = 0; v < n && !tolerated; ++v)
       {
         FUZZ_REQUIRE(scratch.IsDisplayVertex(v) == vdr.IsDisplayVertex(v),

@@ -16,6 +16,7 @@
 #include <array>
 #include <cstdio>
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <random>
 #include <string>
@@ -532,6 +533,74 @@ TEST(ViewDependentRefinement, FixedAccuracyIncrementalEqualsFromScratch)
     EXPECT_GT(forced, 0u) << "dependencies never forced a split on " << f.Name;
   }
   EXPECT_GE(views, 60);
+}
+
+// Views a fuzzer found to make the fixed-accuracy front depend on the
+// previous one: frustum planes of any scale (a plane through a node's
+// children but not its own sphere once reached), tau = 0 (error-0 nodes
+// wanted while their culled predecessors are not), a non-finite eye, an eye
+// too far for its distance to be finite. Each view, after a random history,
+// must give the front a fresh update gives.
+TEST(ViewDependentRefinement, HostileViewsKeepFrontIndependentOfHistory)
+{
+  std::uniform_real_distribution<double> uniform(0.0, 1.0);
+  int checked = 0;
+  for (const auto& fp : ClosedFixtures())
+  {
+    const Fixture& f = *fp;
+    ViewDependentRefinement incremental, scratch;
+    incremental.Initialize(f.Mesh, f.Tree, f.Points.data());
+    scratch.Initialize(f.Mesh, f.Tree, f.Points.data());
+    std::mt19937 rng(23);
+    for (int i = 0; i < 40; ++i)
+    {
+      RefinementView view = RandomView(f, rng);
+      view.NumberOfFrustumPlanes = static_cast<int>(uniform(rng) * 4.0);
+      for (int p = 0; p < view.NumberOfFrustumPlanes; ++p)
+      {
+        // Through a random point near the object, any orientation, scaled by
+        // 10^-3 .. 10^3 (unnormalized, as the fuzzer's -x + 256 y + 1 >= 0).
+        const double scale = std::pow(10.0, 6.0 * uniform(rng) - 3.0);
+        double offset = 0.0;
+        for (int k = 0; k < 3; ++k)
+        {
+          view.FrustumPlanes[p][k] = scale * (2.0 * uniform(rng) - 1.0);
+          offset -= view.FrustumPlanes[p][k] * (f.Center[k] + 0.3 * f.Size * (2.0 * uniform(rng) - 1.0));
+        }
+        view.FrustumPlanes[p][3] = offset;
+      }
+      switch (i % 8)
+      {
+        case 5:
+          view.Eye[1] = std::numeric_limits<double>::quiet_NaN();
+          break;
+        case 6:
+          view.Eye[2] = 1e300; // distance overflows to infinity
+          break;
+        default:
+          break;
+      }
+      const double tau = (i % 3 == 0) ? 0.0 : 0.5 + 4.0 * uniform(rng);
+      for (ViewDependentRefinement* r : { &incremental, &scratch })
+      {
+        r->SetView(view);
+        r->SetPixelThreshold(tau);
+        Configure(*r, i);
+      }
+      incremental.UpdateFixedAccuracy();
+      scratch.Reset();
+      scratch.UpdateFixedAccuracy();
+      CheckFront(f, incremental, "hostile view " + std::to_string(i));
+      ASSERT_TRUE(Front(incremental) == Front(scratch)) << f.Name << " hostile view " << i;
+      if (i % 8 == 5)
+      {
+        EXPECT_EQ(incremental.GetNumberOfDisplayVertices(), f.Mesh.BaseVertexCount)
+          << "a non-finite eye gives the coarsest front";
+      }
+      ++checked;
+    }
+  }
+  EXPECT_GE(checked, 80);
 }
 
 // A smooth camera path (a few degrees and percent of zoom per frame, as a
