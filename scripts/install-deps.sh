@@ -23,8 +23,9 @@ packages=(
   cmake g++ make googletest libgtest-dev xvfb xauth
   # Clang and its runtime libraries (libFuzzer, sanitizers) for the fuzz
   # targets (scripts/run-fuzzers.sh); g++ brings GCC's sanitizer runtimes
-  # for scripts/run-sanitizers.sh
-  clang libclang-rt-14-dev
+  # for scripts/run-sanitizers.sh; llvm brings llvm-symbolizer, which turns
+  # the addresses of sanitizer and fuzzer reports into file:line
+  clang libclang-rt-14-dev llvm
   # ParaView 5.11 with its bundled VTK 9.2, and its Python modules
   paraview paraview-dev python3-paraview python3-numpy python3-matplotlib
   # libraries of the project (OpenImageIO: the library only, found without its
