@@ -17,7 +17,8 @@ grows: over the cycle boundaries after the warm-up (the first two cycles, or
 10% of the frames if more), the least-squares trend of glibc's heap in use
 must add up to at most --max-growth-mb (the content, and so the memory, of
 the scene changes by design from cycle to cycle; a leak shows as a slope).
-The RSS trend is reported too; it also holds the allocator's fragmentation.
+The RSS trend is reported too; it also holds the allocator's fragmentation,
+which the trend of the free bytes glibc holds in its arenas shows.
 
 Usage: xvfb-run -a /usr/bin/python3 scripts/soak.py [--frames 10000]
            [--cycle 250] [--json soak.json]
@@ -51,7 +52,9 @@ class MallInfo2(ctypes.Structure):
 
 
 def heap_in_use_function():
-    """glibc's bytes in use (small and mmapped blocks), or None off glibc."""
+    """glibc's (bytes in use (small and mmapped blocks), free bytes it holds
+    in its arenas), or None off glibc. RSS growth with a flat first figure
+    and a growing second one is fragmentation, not a leak."""
     try:
         libc = ctypes.CDLL("libc.so.6")
         mallinfo2 = libc.mallinfo2
@@ -61,7 +64,7 @@ def heap_in_use_function():
 
     def in_use():
         info = mallinfo2()
-        return info.uordblks + info.hblkhd
+        return info.uordblks + info.hblkhd, info.fordblks
     return in_use
 
 
@@ -202,7 +205,7 @@ def main():
     heap_in_use = heap_in_use_function()
     scene = Scene(args, messages)
     series = {key: [] for key in ("wall", "measured", "predicted", "triangles", "objects",
-                                  "rss", "heap")}
+                                  "rss", "heap", "heap_free")}
     start = time.perf_counter()
     for frame in range(args.frames):
         if frame > 0 and frame % args.cycle == 0:
@@ -217,14 +220,17 @@ def main():
         series["triangles"].append(r.GetTrianglesDrawn())
         series["objects"].append(r.GetNumberOfObjects())
         series["rss"].append(rss_bytes())
-        series["heap"].append(heap_in_use() if heap_in_use else None)
+        used, free = heap_in_use() if heap_in_use else (None, None)
+        series["heap"].append(used)
+        series["heap_free"].append(free)
         if (frame + 1) % 1000 == 0 or frame + 1 == args.frames:
             recent = series["wall"][-1000:]
             print("frame %6d  wall median %.1f ms  p99 %.1f ms  RSS %.1f MiB  heap %s  "
                   "objects %d" % (frame + 1, 1e3 * statistics.median(recent),
                                   1e3 * sorted(recent)[int(0.99 * (len(recent) - 1))],
                                   series["rss"][-1] / 2**20,
-                                  "%.1f MiB" % (series["heap"][-1] / 2**20)
+                                  "%.1f MiB (+%.1f free held)" % (series["heap"][-1] / 2**20,
+                                                                 series["heap_free"][-1] / 2**20)
                                   if heap_in_use else "n/a", series["objects"][-1]),
                   flush=True)
     elapsed = time.perf_counter() - start
@@ -236,7 +242,7 @@ def main():
         checks.append(args.frames - 1)
     failures = []
     growth = {}
-    for key in ("heap", "rss"):
+    for key in ("heap", "heap_free", "rss"):
         if series[key][0] is None:
             continue
         # The trend, not the spread: the scene's content (and so its memory)
