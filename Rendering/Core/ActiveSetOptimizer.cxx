@@ -7,7 +7,11 @@
 #include <climits>
 #include <cfloat>
 #include <cmath>
+#include <cstring>
 #include <limits>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 namespace timecritical
 {
@@ -33,12 +37,399 @@ double Clamp(double x, double lo, double hi)
   return x < lo ? lo : (x > hi ? hi : x);
 }
 
-/// Bucket of a positive key on a half-octave scale (for the warm-start ordering).
+/// Safeguard of a search for a root of phi in (lo, hi), phi(lo) <= budget
+/// < phi(hi): bisection, geometric across orders of magnitude (rooted
+/// separately: kappa spans 600 decades when gamma = 10), outward without hi.
+double Bisect(double lo, double hi)
+{
+  if (!(hi < Infinity))
+  {
+    return lo > 0.0 ? std::min(4.0 * lo, DBL_MAX) : 1.0;
+  }
+  if (!(lo > 0.0))
+  {
+    return 0.25 * hi;
+  }
+  return hi > 4.0 * lo ? std::sqrt(lo) * std::sqrt(hi) : 0.5 * (lo + hi);
+}
+
+/// Half-octave bucket of a non-negative key, from its bits (exponent and
+/// mantissa >= sqrt 2): order-preserving, in [0, KeyBuckets).
+constexpr int KeyBuckets = 4096;
 int Bucket(double key)
 {
-  int e = 0;
-  const double m = std::frexp(key, &e);
-  return 2 * e + (m >= 0.70710678118654752 ? 1 : 0);
+  std::uint64_t bits = 0;
+  std::memcpy(&bits, &key, sizeof(bits));
+  const int exponent = static_cast<int>((bits >> 52) & 0x7ff);
+  return 2 * exponent + ((bits & 0xfffffffffffffull) >= 0x6a09e667f3bcdull ? 1 : 0);
+}
+
+/// x^gamma and one term of eq. 11 for the eq. 10 exponents (Kind = 1: alpha
+/// = 1, 2: alpha = 2, 3: alpha = -1/2) without pow(); Kind 0 is any alpha.
+template <int Kind>
+inline double PowerOf(double x, double gamma)
+{
+  if constexpr (Kind == 1)
+  {
+    (void)gamma;
+    return std::sqrt(x);
+  }
+  else if constexpr (Kind == 2)
+  {
+    (void)gamma;
+    return std::cbrt(x);
+  }
+  else if constexpr (Kind == 3)
+  {
+    (void)gamma;
+    return x * x;
+  }
+  else
+  {
+    return std::pow(x, gamma);
+  }
+}
+
+template <int Kind>
+inline double TermOf(double c, double alpha, double r)
+{
+  if constexpr (Kind == 1)
+  {
+    (void)alpha;
+    return c / r;
+  }
+  else if constexpr (Kind == 2)
+  {
+    (void)alpha;
+    return 0.5 * c / (r * r);
+  }
+  else if constexpr (Kind == 3)
+  {
+    (void)alpha;
+    return -2.0 * c * std::sqrt(r);
+  }
+  else
+  {
+    return ResolutionProblem::Term(c, alpha, r);
+  }
+}
+
+int KindOf(double alpha)
+{
+  return alpha == 1.0 ? 1 : (alpha == 2.0 ? 2 : (alpha == -0.5 ? 3 : 0));
+}
+
+// The O(n) passes of the multiplier search are written once over "lanes":
+// Lane1 (one double: the portable code, and the tail of every loop) and,
+// with SSE2, Lane2 (two doubles per instruction, branch-free: the bound tests
+// are data-dependent and mispredict half the time as branches, and divisions
+// and roots are what the passes spend). +, -, *, / work on both types.
+struct Lane1
+{
+  using V = double;
+  using M = bool;
+  static constexpr std::size_t Width = 1;
+  static V Load(const double* p) { return *p; }
+  static void Store(double* p, V v) { *p = v; }
+  static V Set(double x) { return x; }
+  static V Min(V a, V b) { return b < a ? b : a; }
+  static V Max(V a, V b) { return a < b ? b : a; }
+  static V Sqrt(V a) { return std::sqrt(a); }
+  static M Le(V a, V b) { return a <= b; }
+  static M Lt(V a, V b) { return a < b; }
+  static M Eq(V a, V b) { return a == b; }
+  static M And(M a, M b) { return a && b; }
+  static M Or(M a, M b) { return a || b; }
+  static M AndNot(M a, M b) { return !a && b; } ///< (not a) and b
+  static V Select(M m, V a, V b) { return m ? a : b; }
+  static V Keep(M m, V a) { return m ? a : 0.0; }
+  static V KeepNot(M m, V a) { return m ? 0.0 : a; }
+  static double Sum(V a) { return a; }
+  static unsigned Bits(M m) { return m ? 1u : 0u; }
+  static V LoadKeys(const std::int32_t* p) { return static_cast<double>(*p); }
+  template <class F>
+  static V Map(V a, F f)
+  {
+    return f(a);
+  }
+};
+
+#if defined(__SSE2__)
+struct Lane2
+{
+  using V = __m128d;
+  using M = __m128d;
+  static constexpr std::size_t Width = 2;
+  static V Load(const double* p) { return _mm_loadu_pd(p); }
+  static void Store(double* p, V v) { _mm_storeu_pd(p, v); }
+  static V Set(double x) { return _mm_set1_pd(x); }
+  static V Min(V a, V b) { return _mm_min_pd(b, a); } // a when a is NaN, as Lane1
+  static V Max(V a, V b) { return _mm_max_pd(b, a); }
+  static V Sqrt(V a) { return _mm_sqrt_pd(a); }
+  static M Le(V a, V b) { return _mm_cmple_pd(a, b); }
+  static M Lt(V a, V b) { return _mm_cmplt_pd(a, b); }
+  static M Eq(V a, V b) { return _mm_cmpeq_pd(a, b); }
+  static M And(M a, M b) { return _mm_and_pd(a, b); }
+  static M Or(M a, M b) { return _mm_or_pd(a, b); }
+  static M AndNot(M a, M b) { return _mm_andnot_pd(a, b); }
+  static V Select(M m, V a, V b) { return _mm_or_pd(_mm_and_pd(m, a), _mm_andnot_pd(m, b)); }
+  static V Keep(M m, V a) { return _mm_and_pd(m, a); }
+  static V KeepNot(M m, V a) { return _mm_andnot_pd(m, a); }
+  static double Sum(V a) { return _mm_cvtsd_f64(a) + _mm_cvtsd_f64(_mm_unpackhi_pd(a, a)); }
+  static unsigned Bits(M m) { return static_cast<unsigned>(_mm_movemask_pd(m)); }
+  static V LoadKeys(const std::int32_t* p)
+  {
+    return _mm_cvtepi32_pd(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(p)));
+  }
+  template <class F>
+  static V Map(V a, F f)
+  {
+    alignas(16) double x[2];
+    _mm_store_pd(x, a);
+    return _mm_set_pd(f(x[1]), f(x[0]));
+  }
+};
+using LaneN = Lane2;
+#else
+using LaneN = Lane1;
+#endif
+
+/// Set lanes of a mask of at most two.
+std::size_t CountBits(unsigned bits)
+{
+  return (bits & 1u) + (bits >> 1);
+}
+
+template <class L, int Kind>
+typename L::V PowerLanes(typename L::V x, double gamma)
+{
+  if constexpr (Kind == 1)
+  {
+    return L::Sqrt(x);
+  }
+  else if constexpr (Kind == 3)
+  {
+    return x * x;
+  }
+  else
+  {
+    return L::Map(x, [gamma](double y) { return PowerOf<Kind>(y, gamma); });
+  }
+}
+
+template <class L, int Kind>
+typename L::V TermLanes(typename L::V c, double alpha, typename L::V r)
+{
+  if constexpr (Kind == 1)
+  {
+    return c / r;
+  }
+  else if constexpr (Kind == 2)
+  {
+    return L::Set(0.5) * c / (r * r);
+  }
+  else if constexpr (Kind == 3)
+  {
+    return L::Set(-2.0) * c * L::Sqrt(r);
+  }
+  else
+  {
+    alignas(16) double cs[L::Width], rs[L::Width], out[L::Width];
+    L::Store(cs, c);
+    L::Store(rs, r);
+    for (std::size_t k = 0; k < L::Width; ++k)
+    {
+      out[k] = ResolutionProblem::Term(cs[k], alpha, rs[k]);
+    }
+    return L::Load(out);
+  }
+}
+
+/// Inputs and outputs of the preparation pass (see ActiveSetOptimizer::Prepare).
+struct PrepareData
+{
+  const double *Weight, *MaxTime, *MinResolution;
+  double *R, *T, *Lo, *C, *G;
+  double Gamma, Alpha;
+  bool Warm;
+};
+
+template <class L>
+struct PrepareSums
+{
+  using V = typename L::V;
+  V CostLow = L::Set(0.0), CostHigh = L::Set(0.0), CostTop = L::Set(0.0), Cost = L::Set(0.0);
+  V Objective = L::Set(0.0);
+  V FixedCost = L::Set(0.0), FreeWeight = L::Set(0.0), Weight = L::Set(0.0);
+  std::size_t Invalid = 0, Zero = 0;
+};
+
+template <class L, int Kind>
+void PrepareLanes(const PrepareData& d, std::size_t begin, std::size_t end, PrepareSums<L>& s)
+{
+  using V = typename L::V;
+  using M = typename L::M;
+  const V zero = L::Set(0.0), one = L::Set(1.0), largest = L::Set(DBL_MAX);
+  const V tiny = L::Set(ResolutionProblem::TinyResolution);
+  for (std::size_t i = begin; i < end; i += L::Width)
+  {
+    const V rawLo = d.MinResolution ? L::Load(d.MinResolution + i) : zero;
+    const M finiteLo = L::And(L::Le(rawLo, largest), L::Le(L::Set(-DBL_MAX), rawLo));
+    const V lo = L::Select(finiteLo, L::Min(L::Max(rawLo, tiny), one), tiny);
+    const V rawC = L::Load(d.Weight + i);
+    const V c = L::Keep(L::And(L::Lt(zero, rawC), L::Le(rawC, largest)), rawC);
+    const V rawT = L::Load(d.MaxTime + i);
+    const M valid = L::And(L::Lt(zero, rawT), L::Le(rawT, largest));
+    const M nonNegative = L::And(L::Le(zero, rawT), L::Le(rawT, largest));
+    s.Invalid += L::Width - CountBits(L::Bits(nonNegative));
+    s.Zero += CountBits(L::Bits(L::Eq(rawT, zero)));
+    const V t = L::Keep(valid, rawT);
+    const V g = L::Min(PowerLanes<L, Kind>(L::Keep(valid, c / L::Select(valid, rawT, one)), d.Gamma), largest);
+    L::Store(d.Lo + i, lo);
+    L::Store(d.C + i, c);
+    L::Store(d.T + i, t);
+    L::Store(d.G + i, g);
+    V x = lo;
+    if (d.Warm)
+    {
+      const V previous = L::Load(d.R + i);
+      const M usable =
+        L::And(L::Lt(zero, g), L::And(L::Lt(zero, previous), L::Le(previous, largest)));
+      x = L::Select(usable, L::Min(L::Max(previous, lo), one), lo);
+    }
+    L::Store(d.R + i, x);
+    s.Objective = s.Objective + TermLanes<L, Kind>(c, d.Alpha, x);
+    s.CostLow = s.CostLow + t * lo;
+    s.CostHigh = s.CostHigh + t;
+    s.CostTop = s.CostTop + t * L::Select(L::Lt(zero, g), one, lo);
+    s.Cost = s.Cost + t * x;
+    const M bound = L::Or(L::Le(x, lo), L::Le(one, x));
+    const V tg = t * g;
+    s.FixedCost = s.FixedCost + L::Keep(bound, t * x);
+    s.FreeWeight = s.FreeWeight + L::KeepNot(bound, tg);
+    s.Weight = s.Weight + tg;
+  }
+}
+
+/// Warm-start reduction, first pass: bucket of g_i / r_i of every reducible
+/// object (-1: not reducible) and what each bucket gives when reduced by
+/// beta, summed per lane (consecutive objects mostly share a bucket: one
+/// table would chain every addition on the previous one).
+template <class L>
+void BucketLanes(const double* t, const double* g, const double* lo, const double* r, double beta,
+  std::size_t begin, std::size_t end, std::int32_t* keys, double* bucketCost)
+{
+  using V = typename L::V;
+  const V zero = L::Set(0.0), b = L::Set(beta);
+  for (std::size_t i = begin; i < end; i += L::Width)
+  {
+    const V ti = L::Load(t + i), loi = L::Load(lo + i), x = L::Load(r + i);
+    const unsigned reducible = L::Bits(L::And(L::Lt(zero, ti), L::Lt(loi, x)));
+    alignas(16) double value[L::Width], saved[L::Width];
+    L::Store(value, L::Load(g + i) / x);
+    L::Store(saved, ti * (x - L::Max(loi, b * x)));
+    for (std::size_t k = 0; k < L::Width; ++k)
+    {
+      const int key = (reducible >> k) & 1u ? Bucket(value[k]) : -1;
+      keys[i + k] = key;
+      if (key >= 0)
+      {
+        bucketCost[k * KeyBuckets + static_cast<std::size_t>(key)] += saved[k];
+      }
+    }
+  }
+}
+
+/// Warm-start reduction, last pass: objects with 0 <= key < cut, or key =
+/// cut and index < last, reduced by beta; cost and objective of the result.
+template <class L, int Kind>
+void ReduceLanes(const double* t, const double* lo, const double* c, const std::int32_t* keys,
+  double* r, double beta, double alpha, double cut, double last, std::size_t begin,
+  std::size_t end, typename L::V& cost, typename L::V& objective)
+{
+  using V = typename L::V;
+  const V zero = L::Set(0.0), b = L::Set(beta), vCut = L::Set(cut), vLast = L::Set(last);
+  const V below = L::Set(cut - 1.0), step = L::Set(static_cast<double>(L::Width));
+  alignas(16) double first[L::Width];
+  for (std::size_t k = 0; k < L::Width; ++k)
+  {
+    first[k] = static_cast<double>(begin + k);
+  }
+  V index = L::Load(first);
+  for (std::size_t i = begin; i < end; i += L::Width, index = index + step)
+  {
+    const V key = L::LoadKeys(keys + i);
+    const V limit = L::Select(L::Lt(index, vLast), vCut, below);
+    const V x = L::Load(r + i);
+    const V y = L::Select(L::And(L::Le(zero, key), L::Le(key, limit)), L::Max(L::Load(lo + i), b * x), x);
+    L::Store(r + i, y);
+    cost = cost + L::Load(t + i) * y;
+    objective = objective + TermLanes<L, Kind>(L::Load(c + i), alpha, y);
+  }
+}
+
+/// Classification of the objects over [low, high] (see ActiveSetOptimizer::Classify).
+template <class L>
+void ClassifyLanes(const double* t, const double* g, const double* lo, double low, double high,
+  std::size_t begin, std::size_t end, typename L::V& fixed, typename L::V& slope,
+  std::uint32_t* candidates, std::size_t& count)
+{
+  using V = typename L::V;
+  using M = typename L::M;
+  const V one = L::Set(1.0), vLow = L::Set(low), vHigh = L::Set(high);
+  std::size_t m = count;
+  for (std::size_t i = begin; i < end; i += L::Width)
+  {
+    const V ti = L::Load(t + i), gi = L::Load(g + i), loi = L::Load(lo + i);
+    const V yLow = vLow * gi, yHigh = vHigh * gi;
+    const M upper = L::Le(one, yLow);
+    const M lower = L::AndNot(upper, L::Le(yHigh, loi));
+    const M free = L::AndNot(L::Or(upper, lower), L::And(L::Le(loi, yLow), L::Le(yHigh, one)));
+    fixed = fixed + L::Select(upper, ti, L::Keep(lower, ti * loi));
+    slope = slope + L::Keep(free, ti * gi);
+    const unsigned settled = L::Bits(L::Or(L::Or(upper, lower), free));
+    for (std::size_t k = 0; k < L::Width; ++k)
+    {
+      candidates[m] = static_cast<std::uint32_t>(i + k);
+      m += ((settled >> k) & 1u) ^ 1u;
+    }
+  }
+  count = m;
+}
+
+/// r = clamp(kappa g, rmin, 1) and its sums (see ActiveSetOptimizer::Finish).
+template <class L>
+struct FinishSums
+{
+  typename L::V Objective = L::Set(0.0), Cost = L::Set(0.0);
+  std::size_t Free = 0, Lower = 0, Upper = 0;
+};
+
+template <class L, int Kind>
+void FinishLanes(const double* t, const double* g, const double* lo, const double* c, double* r,
+  double kappa, double alpha, std::size_t begin, std::size_t end, FinishSums<L>& s)
+{
+  using V = typename L::V;
+  using M = typename L::M;
+  const V zero = L::Set(0.0), one = L::Set(1.0), k = L::Set(kappa);
+  for (std::size_t i = begin; i < end; i += L::Width)
+  {
+    const V ti = L::Load(t + i), loi = L::Load(lo + i);
+    // kappa = infinity (time not binding): g = 0 stays at rmin, not NaN.
+    const V gi = L::Load(g + i);
+    const V x = L::Min(L::Max(L::Keep(L::Lt(zero, gi), k * gi), loi), one);
+    L::Store(r + i, x);
+    s.Objective = s.Objective + TermLanes<L, Kind>(L::Load(c + i), alpha, x);
+    s.Cost = s.Cost + ti * x;
+    const M inProblem = L::Lt(zero, ti);
+    const M lower = L::Le(x, loi);
+    const M upper = L::AndNot(lower, L::Le(one, x));
+    const unsigned in = L::Bits(inProblem);
+    const unsigned lowerBits = L::Bits(lower) & in, upperBits = L::Bits(upper) & in;
+    s.Lower += CountBits(lowerBits);
+    s.Upper += CountBits(upperBits);
+    s.Free += CountBits(in & ~(lowerBits | upperBits));
+  }
 }
 }
 
@@ -82,6 +473,10 @@ void ActiveSetOptimizer::Reserve(std::size_t n)
     this->Order.resize(n);
     this->Key.resize(n);
   }
+  if (this->BucketCost.empty())
+  {
+    this->BucketCost.resize(LaneN::Width * KeyBuckets);
+  }
 }
 
 double ActiveSetOptimizer::Power(double x) const
@@ -112,72 +507,381 @@ bool ActiveSetOptimizer::TimeUp()
   return this->Expired;
 }
 
-void ActiveSetOptimizer::BetaReduce(double* r, double budget, double cost)
+template <int Kind>
+void ActiveSetOptimizer::Prepare(
+  const ResolutionProblem& problem, double* r, bool warmStart, StartSums& sums)
+{
+  // One pass: sanitized copies, g_i = (c_i / tmax_i)^gamma (the only root per
+  // object), the start point (rmin, or the previous resolution clamped to the
+  // bounds), and every sum the rest needs. Invalid or zero tmax: T = G = 0,
+  // which keeps the object at rmin in every formula below.
+  const std::size_t n = this->N;
+  const PrepareData data{ problem.Weight, problem.MaxTime, problem.MinResolution, r,
+    this->T.data(), this->Lo.data(), this->C.data(), this->G.data(), this->Gamma, this->Alpha,
+    warmStart };
+  const std::size_t body = n - n % LaneN::Width;
+  PrepareSums<LaneN> wide;
+  PrepareLanes<LaneN, Kind>(data, 0, body, wide);
+  PrepareSums<Lane1> tail;
+  PrepareLanes<Lane1, Kind>(data, body, n, tail);
+  sums.CostLow = LaneN::Sum(wide.CostLow) + tail.CostLow;
+  sums.CostHigh = LaneN::Sum(wide.CostHigh) + tail.CostHigh;
+  sums.CostTop = LaneN::Sum(wide.CostTop) + tail.CostTop;
+  sums.Cost = LaneN::Sum(wide.Cost) + tail.Cost;
+  sums.Objective = LaneN::Sum(wide.Objective) + tail.Objective;
+  sums.FixedCost = LaneN::Sum(wide.FixedCost) + tail.FixedCost;
+  sums.FreeWeight = LaneN::Sum(wide.FreeWeight) + tail.FreeWeight;
+  sums.Weight = LaneN::Sum(wide.Weight) + tail.Weight;
+  sums.Invalid = wide.Invalid + tail.Invalid;
+  sums.Zero = wide.Zero + tail.Zero;
+}
+
+template <int Kind>
+void ActiveSetOptimizer::BetaReduce(double* r, double budget, StartSums& sums)
 {
   // Section 5.3.1: reduce resolutions by Beta, least valuable objects first,
   // until the time constraint holds. "Value" is the marginal benefit per unit
   // of time, rho_i = -f_i'(r_i) / tmax_i = (g_i / r_i)^(alpha+1); ordering by
-  // g_i / r_i is the same and needs no pow(). Counting sort on half-octave
-  // buckets keeps each pass O(n) without allocation.
+  // g_i / r_i is the same and needs no pow(). Per round, one pass buckets the
+  // objects (half octaves) and sums what each bucket gives; the buckets below
+  // the one that covers the excess are reduced whole, that one in index order
+  // (what a stable sort would do) up to the object found by a scan: no sort,
+  // and the reduction is one more pass that also sums cost and objective.
+  // The start's working-set sums stay those of the unreduced point: the
+  // previous frame's free set predicts this frame's multiplier better.
   const double beta = this->Opts.Beta > 0.0 && this->Opts.Beta < 1.0 ? this->Opts.Beta : 0.8;
-  constexpr int Buckets = 128;
-  std::array<std::uint32_t, Buckets + 1> counts{};
   const std::size_t n = this->N;
-  double excess = cost - budget;
-  for (int pass = 0; excess > 0.0 && pass < 1000; ++pass)
+  const std::size_t body = n - n % LaneN::Width;
+  double* bucketCost = this->BucketCost.data();
+  const double *t = this->T.data(), *lo = this->Lo.data(), *g = this->G.data(), *c = this->C.data();
+  std::int32_t* keys = this->Key.data();
+  double excess = sums.Cost - budget;
+  for (int round = 0; excess > 0.0 && round < 1000; ++round)
   {
-    // Bucket of every reducible object (INT_MIN: not reducible), computed once.
-    int lowest = INT_MAX;
-    for (std::size_t i = 0; i < n; ++i)
+    std::fill(bucketCost, bucketCost + LaneN::Width * KeyBuckets, 0.0);
+    BucketLanes<LaneN>(t, g, lo, r, beta, 0, body, keys, bucketCost);
+    BucketLanes<Lane1>(t, g, lo, r, beta, body, n, keys, bucketCost);
+    this->Work += n;
+    int cut = 0;
+    double below = 0.0, any = 0.0;
+    for (int b = 0; b < KeyBuckets; ++b)
     {
-      const bool reducible = this->State[i] == Free && r[i] > this->Lo[i];
-      this->Key[i] = reducible ? Bucket(this->G[i] / r[i]) : INT_MIN;
-      lowest = reducible ? std::min(lowest, this->Key[i]) : lowest;
+      for (std::size_t k = 1; k < LaneN::Width; ++k)
+      {
+        bucketCost[b] += bucketCost[k * KeyBuckets + static_cast<std::size_t>(b)];
+      }
+      any += bucketCost[b];
     }
-    if (lowest == INT_MAX)
+    if (!(any > 0.0))
     {
       break;
     }
-    counts.fill(0);
-    for (std::size_t i = 0; i < n; ++i)
+    for (; cut < KeyBuckets && below + bucketCost[cut] < excess; ++cut)
     {
-      if (this->Key[i] != INT_MIN)
+      below += bucketCost[cut];
+    }
+    // In the cut bucket, objects up to the one that covers the rest.
+    std::size_t last = n;
+    if (cut < KeyBuckets)
+    {
+      const double need = excess - below;
+      double given = 0.0;
+      for (std::size_t i = 0; i < n; ++i)
       {
-        this->Key[i] = std::min(Buckets - 1, this->Key[i] - lowest);
-        ++counts[static_cast<std::size_t>(this->Key[i]) + 1];
+        if (keys[i] == cut)
+        {
+          given += t[i] * (r[i] - std::max(lo[i], beta * r[i]));
+          if (given >= need)
+          {
+            last = i + 1;
+            break;
+          }
+        }
       }
     }
-    for (int b = 0; b < Buckets; ++b)
-    {
-      counts[b + 1] += counts[b];
-    }
-    std::size_t m = 0;
-    for (std::size_t i = 0; i < n; ++i)
-    {
-      if (this->Key[i] != INT_MIN)
-      {
-        this->Order[counts[static_cast<std::size_t>(this->Key[i])]++] = static_cast<std::uint32_t>(i);
-        ++m;
-      }
-    }
-    for (std::size_t j = 0; j < m && excess > 0.0; ++j)
-    {
-      const std::uint32_t i = this->Order[j];
-      const double reduced = std::max(this->Lo[i], beta * r[i]);
-      excess -= this->T[i] * (r[i] - reduced);
-      r[i] = reduced;
-    }
+    LaneN::V wideCost = LaneN::Set(0.0), wideObjective = LaneN::Set(0.0);
+    double cost = 0.0, objective = 0.0;
+    ReduceLanes<LaneN, Kind>(t, lo, c, keys, r, beta, this->Alpha, cut,
+      static_cast<double>(last), 0, body, wideCost, wideObjective);
+    ReduceLanes<Lane1, Kind>(t, lo, c, keys, r, beta, this->Alpha, cut,
+      static_cast<double>(last), body, n, cost, objective);
+    this->Work += n;
+    sums.Cost = cost + LaneN::Sum(wideCost);
+    sums.Objective = objective + LaneN::Sum(wideObjective);
+    excess = sums.Cost - budget;
   }
   if (excess > 0.0) // rounding only: rmin is feasible
   {
+    sums.Cost = sums.Objective = 0.0;
     for (std::size_t i = 0; i < n; ++i)
     {
-      if (this->State[i] == Free)
-      {
-        r[i] = this->Lo[i];
-      }
+      r[i] = lo[i];
+      sums.Cost += t[i] * r[i];
+      sums.Objective += ResolutionProblem::Term(c[i], this->Alpha, r[i]);
     }
   }
+}
+
+double ActiveSetOptimizer::Classify(double low, double high, double& slope, std::size_t& count)
+{
+  // Every object whose clamp(kappa g_i, rmin_i, 1) has the same form over
+  // [low, high] goes into an affine sum, fixed + kappa slope; the others
+  // (a breakpoint rmin_i / g_i or 1 / g_i inside) become candidates. Objects
+  // out of the problem have T = G = 0: at rmin, costing nothing.
+  const std::size_t n = this->N;
+  const std::size_t body = n - n % LaneN::Width;
+  LaneN::V wideFixed = LaneN::Set(0.0), wideSlope = LaneN::Set(0.0);
+  double fixed = 0.0;
+  slope = 0.0;
+  count = 0;
+  ClassifyLanes<LaneN>(this->T.data(), this->G.data(), this->Lo.data(), low, high, 0, body,
+    wideFixed, wideSlope, this->Order.data(), count);
+  ClassifyLanes<Lane1>(this->T.data(), this->G.data(), this->Lo.data(), low, high, body, n,
+    fixed, slope, this->Order.data(), count);
+  this->Work += n;
+  slope += LaneN::Sum(wideSlope);
+  return fixed + LaneN::Sum(wideFixed);
+}
+
+bool ActiveSetOptimizer::SolveCandidates(double& low, double& high, double fixedCost,
+  double slope, std::size_t count, double budget, double& kappa)
+{
+  // phi(kappa) = fixedCost + kappa slope + sum over the candidates of
+  // tmax_i clamp(kappa g_i) on [low, high], phi(low) <= budget <= phi(high):
+  // a safeguarded Newton iteration over the candidates only. Exact when phi
+  // meets the budget, a Newton step crossed no breakpoint (it then solved
+  // the linear piece it is on) or the bracket is down to rounding; otherwise
+  // false with the bracket narrowed.
+  const std::uint32_t* candidates = this->Order.data();
+  const double tolerance = std::max(1e-13, 2.0 * static_cast<double>(this->N) * DBL_EPSILON);
+  double k = low;
+  double previous = -1.0;
+  for (int round = 0; round < MaxNewtonRounds; ++round)
+  {
+    double phi = fixedCost + k * slope, d = slope;
+    std::size_t moved = 0;
+    for (std::size_t j = 0; j < count; ++j)
+    {
+      const std::uint32_t i = candidates[j];
+      const double t = this->T[i], lo = this->Lo[i], y = k * this->G[i];
+      if (previous >= 0.0)
+      {
+        const double x = previous * this->G[i];
+        moved += (x <= lo) != (y <= lo) || (x >= 1.0) != (y >= 1.0);
+      }
+      if (y <= lo)
+      {
+        phi += t * lo;
+      }
+      else if (y >= 1.0)
+      {
+        phi += t;
+      }
+      else
+      {
+        phi += t * y;
+        d += t * this->G[i];
+      }
+    }
+    this->Work += count;
+    if (std::abs(phi - budget) <= tolerance * budget || (previous >= 0.0 && moved == 0))
+    {
+      kappa = k;
+      return true;
+    }
+    (phi < budget ? low : high) = k;
+    if (high - low <= 1e-15 * high)
+    {
+      kappa = low; // within rounding of the root, on its feasible side
+      return true;
+    }
+    double next = d > 0.0 ? k + (budget - phi) / d : -1.0;
+    previous = k;
+    if (!(next > low && next < high))
+    {
+      previous = -1.0;
+      next = Bisect(low, high);
+    }
+    k = next;
+  }
+  return false;
+}
+
+template <int Kind>
+void ActiveSetOptimizer::Finish(double* r, double kappa, double rawBudget, Result& result)
+{
+  // r_i = clamp(kappa g_i, rmin_i, 1) and the report, in one pass: every
+  // multiplier of eq. 16 is non-negative at such a point by construction.
+  const std::size_t n = this->N;
+  const double alpha = this->Alpha;
+  const std::size_t body = n - n % LaneN::Width;
+  FinishSums<LaneN> wide;
+  FinishLanes<LaneN, Kind>(this->T.data(), this->G.data(), this->Lo.data(), this->C.data(), r,
+    kappa, alpha, 0, body, wide);
+  FinishSums<Lane1> tail;
+  FinishLanes<Lane1, Kind>(this->T.data(), this->G.data(), this->Lo.data(), this->C.data(), r,
+    kappa, alpha, body, n, tail);
+  this->Work += n;
+  const double cost = LaneN::Sum(wide.Cost) + tail.Cost;
+  result.Objective = LaneN::Sum(wide.Objective) + tail.Objective;
+  result.Cost = cost;
+  result.FreeCount = wide.Free + tail.Free;
+  result.LowerCount = wide.Lower + tail.Lower;
+  result.UpperCount = wide.Upper + tail.Upper;
+  // The time constraint is tight unless nothing can rise above rmin (kappa
+  // 0) or every object that can is at 1 (kappa infinite).
+  const double violation = (cost - rawBudget) / rawBudget;
+  const bool tight = kappa > 0.0 && kappa < Infinity;
+  result.Multiplier = tight ? std::pow(kappa, -(alpha + 1.0)) : 0.0;
+  result.KKTResidual = tight ? std::abs(violation) : std::max(0.0, violation);
+}
+
+void ActiveSetOptimizer::SolveMultiplier(
+  double* r, double budget, double rawBudget, const StartSums& sums, Result& result)
+{
+  // Algorithm 1 with both options on: W = {time constraint}, every bound
+  // resolved inside one projected step, so the answer is r_i = clamp(kappa
+  // g_i, rmin_i, 1) with phi(kappa) = sum tmax_i r_i = budget, a root of a
+  // non-decreasing piecewise-linear function. The start's eq. 14 kappa (the
+  // previous frame's multiplier when warm) centres an interval; one pass sums
+  // the objects whose form is fixed on it and lists the others (those with a
+  // breakpoint inside: a few hundred of 100,000 for a frame-to-frame change),
+  // and the root is found among those. When the interval misses the root, a
+  // Newton step from its near end centres the next one, wider.
+  const std::size_t n = this->N;
+  result.InitialObjective = sums.Objective;
+  result.State = Status::IterationLimit;
+  double kLo = 0.0, kHi = Infinity; // phi(kLo) <= budget < phi(kHi)
+  double solution = -1.0;
+  if (this->Opts.MaxIterations > 0 && this->Opts.MaxSteps > 0)
+  {
+    ++result.Iterations;
+    if (!(sums.Weight > 0.0))
+    {
+      solution = 0.0; // nothing can rise above rmin
+    }
+    else if (sums.CostTop <= budget)
+    {
+      solution = Infinity; // objects with c = 0 stay at rmin: the time is not binding
+    }
+    double kappa = sums.FreeWeight > 0.0 && budget > sums.FixedCost
+      ? (budget - sums.FixedCost) / sums.FreeWeight
+      : budget / sums.Weight;
+    double spread = sums.FreeWeight > 0.0 ? 1.0 + 1.0 / 64.0 : 1.5; // interval: kappa / spread ... kappa spread
+    while (solution < 0.0)
+    {
+      if (this->StepCount >= this->Opts.MaxSteps || this->TimeUp())
+      {
+        result.State = this->Expired ? Status::TimeLimit : Status::IterationLimit;
+        break;
+      }
+      if (!(kLo < DBL_MAX))
+      {
+        // The root is beyond the largest kappa (g_i near the underflow: gamma
+        // = 10 spans 600 decades): the best representable point, feasible.
+        solution = DBL_MAX;
+        break;
+      }
+      ++this->StepCount;
+      if (!(kappa > kLo && kappa < kHi))
+      {
+        kappa = Bisect(kLo, kHi);
+      }
+      const double low = std::max(kLo, kappa / spread);
+      const double high = std::min({ kHi, kappa * spread, DBL_MAX });
+      double slope = 0.0;
+      std::size_t count = 0;
+      const double fixedCost = this->Classify(low, high, slope, count);
+      // phi and its slope at both ends from the affine part and the candidates.
+      double phiLow = fixedCost + low * slope, phiHigh = fixedCost + high * slope;
+      double dLow = slope, dHigh = slope;
+      for (std::size_t j = 0; j < count; ++j)
+      {
+        const std::uint32_t i = this->Order[j];
+        const double t = this->T[i], g = this->G[i], lo = this->Lo[i];
+        const double yLow = low * g, yHigh = high * g;
+        phiLow += t * Clamp(yLow, lo, 1.0);
+        phiHigh += t * Clamp(yHigh, lo, 1.0);
+        dLow += yLow > lo && yLow < 1.0 ? t * g : 0.0;
+        dHigh += yHigh > lo && yHigh < 1.0 ? t * g : 0.0;
+      }
+      this->Work += count;
+      if (phiLow <= budget && budget <= phiHigh)
+      {
+        double root = low, rootLow = low, rootHigh = high;
+        if (this->SolveCandidates(rootLow, rootHigh, fixedCost, slope, count, budget, root))
+        {
+          solution = root;
+          break;
+        }
+        kLo = rootLow; // out of rounds: search on with the narrower bracket
+        kHi = rootHigh;
+        kappa = Bisect(kLo, kHi);
+        spread = std::max(kappa / kLo, kHi / kappa);
+        continue;
+      }
+      // Missed: a Newton step from the near end centres the next interval,
+      // at least twice as wide in log scale.
+      const bool above = phiLow > budget;
+      const double from = above ? low : high;
+      (above ? kHi : kLo) = from;
+      const double d = above ? dLow : dHigh;
+      const double next = d > 0.0 ? from + (budget - (above ? phiLow : phiHigh)) / d : -1.0;
+      spread = std::min(1e300, std::max(spread * spread, 1.0 + 2.0 * std::abs(next - from) / from));
+      kappa = next;
+    }
+  }
+  if (solution < 0.0)
+  {
+    // Stopped: the bracket's feasible end if it beats the start (anytime).
+    bool moved = false;
+    if (kLo > 0.0)
+    {
+      double objective = 0.0;
+      for (std::size_t i = 0; i < n; ++i)
+      {
+        objective += ResolutionProblem::Term(
+          this->C[i], this->Alpha, Clamp(kLo * this->G[i], this->Lo[i], 1.0));
+      }
+      if (objective < sums.Objective)
+      {
+        moved = true;
+        for (std::size_t i = 0; i < n; ++i)
+        {
+          r[i] = Clamp(kLo * this->G[i], this->Lo[i], 1.0);
+        }
+      }
+    }
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      this->State[i] = !(this->T[i] > 0.0)
+        ? PinnedLow
+        : (r[i] <= this->Lo[i] ? Lower : (r[i] >= 1.0 ? Upper : Free));
+    }
+    this->Report(r, budget, rawBudget, result);
+    if (!moved) // the start, whose f was summed in another order
+    {
+      result.Objective = sums.Objective;
+    }
+    return;
+  }
+  switch (KindOf(this->Alpha))
+  {
+    case 1:
+      this->Finish<1>(r, solution, rawBudget, result);
+      break;
+    case 2:
+      this->Finish<2>(r, solution, rawBudget, result);
+      break;
+    case 3:
+      this->Finish<3>(r, solution, rawBudget, result);
+      break;
+    default:
+      this->Finish<0>(r, solution, rawBudget, result);
+      break;
+  }
+  result.State = solution < DBL_MAX || result.KKTResidual <= 1e-8 ? Status::Optimal
+                                                                 : Status::IterationLimit;
 }
 
 double ActiveSetOptimizer::ClosedForm(double* r, double budget)
@@ -239,7 +943,7 @@ double ActiveSetOptimizer::ClosedForm(double* r, double budget)
     if (!(next > kLo && next < kHi))
     {
       next = !std::isfinite(kHi) ? 4.0 * std::max(kLo, kappa)
-                                 : (kLo > 0.0 ? std::sqrt(kLo * kHi) : 0.25 * kHi);
+                                 : (kLo > 0.0 ? std::sqrt(kLo) * std::sqrt(kHi) : 0.25 * kHi);
     }
     kappa = next;
   }
@@ -375,7 +1079,7 @@ bool ActiveSetOptimizer::ProjectedStep(
       // Safeguard: bisection (geometric across orders of magnitude).
       previous = -1.0;
       next = !std::isfinite(kHi) ? 4.0 * std::max(kLo, kappa)
-        : (kLo > 0.0 && kHi > 4.0 * kLo ? std::sqrt(kLo * kHi) : 0.5 * (kLo + kHi));
+        : (kLo > 0.0 && kHi > 4.0 * kLo ? std::sqrt(kLo) * std::sqrt(kHi) : 0.5 * (kLo + kHi));
     }
     if (std::isfinite(kHi) && kHi - kLo <= 1e-15 * kHi)
     {
@@ -545,6 +1249,89 @@ bool ActiveSetOptimizer::Release(double kappa, bool slackTime)
   return released;
 }
 
+double ActiveSetOptimizer::BoundKappa() const
+{
+  // Multiplier kappa when no variable is free: any kappa between the bounds'
+  // limits satisfies eq. 16; -1 when none does.
+  const std::size_t n = this->N;
+  double lowest = 0.0, highest = Infinity;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    if (this->State[i] == Upper)
+    {
+      lowest = std::max(lowest, 1.0 / this->G[i]);
+    }
+    else if (this->State[i] == Lower && this->G[i] > 0.0)
+    {
+      highest = std::min(highest, this->Lo[i] / this->G[i]);
+    }
+  }
+  if (lowest > highest * (1.0 + ReleaseTolerance))
+  {
+    return -1.0;
+  }
+  return std::isfinite(highest) ? (lowest > 0.0 ? std::sqrt(lowest * highest) : highest)
+                                : std::max(lowest, 1.0);
+}
+
+void ActiveSetOptimizer::Report(const double* r, double budget, double rawBudget, Result& result)
+{
+  // Objective, cost, multiplier and KKT residual at r for the working set in
+  // State: kappa from eq. 14 on its free variables.
+  const std::size_t n = this->N;
+  double objective = 0.0, cost = 0.0, fixedCost = 0.0, weightSum = 0.0;
+  std::size_t freeCount = 0;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    objective += ResolutionProblem::Term(this->C[i], this->Alpha, r[i]);
+    cost += this->T[i] * r[i];
+    const std::uint8_t s = this->State[i];
+    if (s == Free)
+    {
+      weightSum += this->T[i] * this->G[i];
+      ++freeCount;
+    }
+    else if (s <= Upper)
+    {
+      fixedCost += this->T[i] * r[i];
+    }
+  }
+  result.Objective = objective;
+  result.Cost = cost;
+  double kappa = Infinity;
+  if (freeCount > 0)
+  {
+    kappa = (budget - fixedCost) / weightSum;
+  }
+  else if (budget - fixedCost <= 1e-12 * std::abs(budget))
+  {
+    kappa = this->BoundKappa();
+    kappa = kappa < 0.0 ? Infinity : kappa;
+  }
+  double residual = 0.0;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const std::uint8_t s = this->State[i];
+    if (s > Upper)
+    {
+      continue;
+    }
+    const double target = this->G[i] > 0.0 ? Clamp(kappa * this->G[i], this->Lo[i], 1.0) : this->Lo[i];
+    residual = std::max(residual, std::abs(r[i] - target));
+    result.FreeCount += s == Free;
+    result.LowerCount += s == Lower;
+    result.UpperCount += s == Upper;
+  }
+  const double violation = (result.Cost - rawBudget) / rawBudget;
+  residual = std::max(residual, violation);
+  if (std::isfinite(kappa))
+  {
+    residual = std::max(residual, std::abs(violation));
+    result.Multiplier = std::pow(kappa, -(this->Alpha + 1.0));
+  }
+  result.KKTResidual = residual;
+}
+
 ActiveSetOptimizer::Result ActiveSetOptimizer::Solve(
   const ResolutionProblem& problem, double* r, bool warmStart)
 {
@@ -588,42 +1375,44 @@ ActiveSetOptimizer::Result ActiveSetOptimizer::Solve(
   this->Alpha = problem.Alpha;
   this->Gamma = 1.0 / (problem.Alpha + 1.0);
 
-  // Sanitized copies; g_i = (c_i / tmax_i)^gamma is the only pow() per object.
-  double costLow = 0.0, costHigh = 0.0;
-  for (std::size_t i = 0; i < n; ++i)
+  // Sanitized copies, the start point and its sums in one pass.
+  StartSums sums;
+  switch (KindOf(this->Alpha))
   {
-    const double lo = problem.MinResolution ? problem.MinResolution[i] : 0.0;
-    this->Lo[i] = std::isfinite(lo) ? Clamp(lo, ResolutionProblem::TinyResolution, 1.0)
-                                    : ResolutionProblem::TinyResolution;
-    const double c = problem.Weight[i];
-    this->C[i] = std::isfinite(c) && c > 0.0 ? c : 0.0;
-    const double t = problem.MaxTime[i];
-    this->T[i] = 0.0;
-    this->G[i] = 0.0;
-    if (!(std::isfinite(t) && t >= 0.0))
-    {
-      this->State[i] = PinnedLow;
-      ++result.InvalidCount;
-    }
-    else if (t == 0.0)
-    {
-      // Not free: a broken cost model (see the class comment).
-      this->State[i] = PinnedLow;
-      ++result.ZeroCostCount;
-    }
-    else
-    {
-      this->State[i] = Free;
-      this->T[i] = t;
-      const double g = this->C[i] > 0.0 ? this->Power(this->C[i] / t) : 0.0;
-      this->G[i] = std::isfinite(g) ? g : std::numeric_limits<double>::max();
-      costLow += t * this->Lo[i];
-      costHigh += t;
-    }
+    case 1:
+      this->Prepare<1>(problem, r, warmStart, sums);
+      break;
+    case 2:
+      this->Prepare<2>(problem, r, warmStart, sums);
+      break;
+    case 3:
+      this->Prepare<3>(problem, r, warmStart, sums);
+      break;
+    default:
+      this->Prepare<0>(problem, r, warmStart, sums);
+      break;
   }
   this->Work += n;
+  result.InvalidCount = sums.Invalid;
+  result.ZeroCostCount = sums.Zero;
+  // The lane sums differ from a sequential sum by rounding: where that
+  // could decide a comparison with the budget, the sequential sum decides
+  // (a caller that sets the budget to cost(rmin) or cost(1) gets that case).
+  const double rawBudget = problem.Budget;
+  const double rounding = 4.0 * static_cast<double>(n) * DBL_EPSILON;
+  if (std::abs(sums.CostLow - rawBudget) <= rounding * sums.CostLow ||
+    std::abs(sums.CostHigh - rawBudget) <= rounding * sums.CostHigh)
+  {
+    sums.CostLow = sums.CostHigh = 0.0;
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      sums.CostLow += this->T[i] * this->Lo[i];
+      sums.CostHigh += this->T[i];
+    }
+  }
+  const double costLow = sums.CostLow, costHigh = sums.CostHigh;
 
-  auto pinned = [&](std::size_t i) { return this->Lo[i]; };
+  auto inProblem = [&](std::size_t i) { return this->T[i] > 0.0; };
   auto objectiveOf = [&]() {
     double f = 0.0;
     for (std::size_t i = 0; i < n; ++i)
@@ -642,13 +1431,14 @@ ActiveSetOptimizer::Result ActiveSetOptimizer::Solve(
   };
 
   // Section 5.3.1: infeasible and all-full cases terminate at once.
-  const double rawBudget = problem.Budget;
   if (!std::isfinite(rawBudget) || costLow > rawBudget || costHigh <= rawBudget)
   {
     const bool full = std::isfinite(rawBudget) && costHigh <= rawBudget;
     for (std::size_t i = 0; i < n; ++i)
     {
-      r[i] = this->State[i] == Free ? (full ? 1.0 : this->Lo[i]) : pinned(i);
+      r[i] = inProblem(i) && full ? 1.0 : this->Lo[i];
+      result.UpperCount += inProblem(i) && full;
+      result.LowerCount += inProblem(i) && !full;
     }
     result.State = full ? Status::Unconstrained : Status::Infeasible;
     result.Objective = result.InitialObjective = objectiveOf();
@@ -657,11 +1447,6 @@ ActiveSetOptimizer::Result ActiveSetOptimizer::Solve(
                               : (std::isfinite(rawBudget) && rawBudget != 0.0
                                     ? (result.Cost - rawBudget) / std::abs(rawBudget)
                                     : Infinity);
-    for (std::size_t i = 0; i < n; ++i)
-    {
-      result.UpperCount += this->State[i] == Free && full;
-      result.LowerCount += this->State[i] == Free && !full;
-    }
     return finish();
   }
   // Solve against a budget shaved by the rounding of O(n)-term sums (at
@@ -672,8 +1457,8 @@ ActiveSetOptimizer::Result ActiveSetOptimizer::Solve(
   {
     for (std::size_t i = 0; i < n; ++i)
     {
-      r[i] = this->State[i] == Free ? this->Lo[i] : pinned(i);
-      result.LowerCount += this->State[i] == Free;
+      r[i] = this->Lo[i];
+      result.LowerCount += inProblem(i);
     }
     result.State = Status::Optimal;
     result.Objective = result.InitialObjective = objectiveOf();
@@ -681,28 +1466,37 @@ ActiveSetOptimizer::Result ActiveSetOptimizer::Solve(
     return finish();
   }
 
-  // Start point: rmin, or the previous resolutions reduced until feasible;
-  // without time to iterate, the closed form (or the warm start if better).
+  // Start point: rmin, or the previous resolutions reduced until feasible.
+  if (sums.Cost > budget)
+  {
+    switch (KindOf(this->Alpha))
+    {
+      case 1:
+        this->BetaReduce<1>(r, budget, sums);
+        break;
+      case 2:
+        this->BetaReduce<2>(r, budget, sums);
+        break;
+      case 3:
+        this->BetaReduce<3>(r, budget, sums);
+        break;
+      default:
+        this->BetaReduce<0>(r, budget, sums);
+        break;
+    }
+  }
   const bool noIteration = !(timeLimit > 0.0);
-  double cost = 0.0;
+  if (!noIteration && this->Opts.ProjectedSteps && this->Opts.BlockRelease)
+  {
+    this->SolveMultiplier(r, budget, rawBudget, sums, result);
+    return finish();
+  }
+
+  // The paper's iteration (or one option off); without time to iterate, the
+  // closed form (or the warm start if better).
   for (std::size_t i = 0; i < n; ++i)
   {
-    if (this->State[i] != Free)
-    {
-      r[i] = pinned(i);
-      continue;
-    }
-    double x = this->Lo[i];
-    if (warmStart && this->G[i] > 0.0 && std::isfinite(r[i]) && r[i] > 0.0)
-    {
-      x = Clamp(r[i], this->Lo[i], 1.0);
-    }
-    r[i] = x;
-    cost += this->T[i] * x;
-  }
-  if (cost > budget)
-  {
-    this->BetaReduce(r, budget, cost);
+    this->State[i] = inProblem(i) ? Free : PinnedLow;
   }
   if (noIteration)
   {
@@ -759,29 +1553,6 @@ ActiveSetOptimizer::Result ActiveSetOptimizer::Solve(
     this->Work += n;
     return freeCount;
   };
-  // Multiplier kappa when no variable is free: any kappa between the bounds'
-  // limits satisfies eq. 16; -1 when none does.
-  auto boundKappa = [&]() {
-    double lowest = 0.0, highest = Infinity;
-    for (std::size_t i = 0; i < n; ++i)
-    {
-      if (this->State[i] == Upper)
-      {
-        lowest = std::max(lowest, 1.0 / this->G[i]);
-      }
-      else if (this->State[i] == Lower && this->G[i] > 0.0)
-      {
-        highest = std::min(highest, this->Lo[i] / this->G[i]);
-      }
-    }
-    if (lowest > highest * (1.0 + ReleaseTolerance))
-    {
-      return -1.0;
-    }
-    return std::isfinite(highest) ? (lowest > 0.0 ? std::sqrt(lowest * highest) : highest)
-                                  : std::max(lowest, 1.0);
-  };
-
   result.State = Status::IterationLimit;
   int stalls = 0;
   int fullReleases = 0;
@@ -855,7 +1626,7 @@ ActiveSetOptimizer::Result ActiveSetOptimizer::Solve(
       slackTime = slack > 1e-12 * std::abs(budget);
       if (!slackTime)
       {
-        kappa = boundKappa();
+        kappa = this->BoundKappa();
         if (kappa < 0.0)
         {
           // Degenerate vertex (everything at a bound, time tight) whose
@@ -883,44 +1654,8 @@ ActiveSetOptimizer::Result ActiveSetOptimizer::Solve(
     }
   }
 
-  // Report: objective, cost, multiplier and KKT residual at the returned point.
-  result.Objective = objectiveOf();
-  result.Cost = costOf();
-  double fixedCost = 0.0, weightSum = 0.0;
-  const std::size_t freeCount = subspace(fixedCost, weightSum);
-  double kappa = Infinity;
-  if (freeCount > 0)
-  {
-    kappa = (budget - fixedCost) / weightSum;
-  }
-  else if (budget - fixedCost <= 1e-12 * std::abs(budget))
-  {
-    kappa = boundKappa();
-    kappa = kappa < 0.0 ? Infinity : kappa;
-  }
-  double residual = 0.0;
-  for (std::size_t i = 0; i < n; ++i)
-  {
-    const std::uint8_t s = this->State[i];
-    if (s > Upper)
-    {
-      continue;
-    }
-    const double target = this->G[i] > 0.0 ? Clamp(kappa * this->G[i], this->Lo[i], 1.0) : this->Lo[i];
-    residual = std::max(residual, std::abs(r[i] - target));
-    result.FreeCount += s == Free;
-    result.LowerCount += s == Lower;
-    result.UpperCount += s == Upper;
-  }
-  const double violation = (result.Cost - rawBudget) / rawBudget;
-  residual = std::max(residual, violation);
-  if (std::isfinite(kappa))
-  {
-    residual = std::max(residual, std::abs(violation));
-    result.Multiplier = std::pow(kappa, -(this->Alpha + 1.0));
-  }
-  result.KKTResidual = residual;
-  if (result.State == Status::IterationLimit && stalls >= 2 && residual <= 1e-8)
+  this->Report(r, budget, rawBudget, result);
+  if (result.State == Status::IterationLimit && stalls >= 2 && result.KKTResidual <= 1e-8)
   {
     result.State = Status::Optimal;
   }

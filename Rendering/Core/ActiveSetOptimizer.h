@@ -38,15 +38,30 @@ namespace timecritical
  *    multipliers (eq. 16) and release of negative ones; else a step.
  *
  * Two options, both on by default, turn what is O(n) iterations of O(n) in
- * the textbook method into a handful (set both off for the paper's method):
- * - ProjectedSteps: the bounds of free variables that a step runs into are
- *   resolved inside the step (a safeguarded Newton iteration on kappa over the
- *   free variables, each round O(n)) instead of stopping at the first one
- *   (ratio test). The candidate is accepted only when feasible and not worse
- *   than the current point; otherwise the ratio-test step is taken.
+ * the textbook method into one (set both off for the paper's method):
+ * - ProjectedSteps: the bounds that a step runs into are resolved inside the
+ *   step instead of stopping at the first one (ratio test);
  * - BlockRelease: every bound with a negative multiplier is released at once
- *   instead of only the most negative one; the projected step puts back those
- *   that should stay.
+ *   instead of only the most negative one.
+ * With both, the first step releases every bound and resolves them all, so
+ * the answer is r_i = clamp(kappa g_i, rmin_i, 1) with kappa the root of the
+ * non-decreasing piecewise-linear phi(kappa) = sum_i tmax_i r_i = Budget,
+ * optimal by construction (every eq. 16 multiplier is then non-negative).
+ * The start's eq. 14 kappa (the previous frame's when warm) centres an
+ * interval; one O(n) pass sums the objects whose clamp has a fixed form on it
+ * and lists the others, whose breakpoints lie inside (a few hundred of
+ * 100,000 after a frame-to-frame change), and a safeguarded Newton iteration
+ * over that list finds the root; an interval that misses it is followed by a
+ * wider one around a Newton step. A warm solve is then four O(n) passes
+ * (start, Beta reduction when the previous point is over budget, the
+ * classification, the answer), branch-free and two objects per instruction
+ * with SSE2: about 0.6 ms for 100,000 objects where the step-by-step method
+ * took 6.5 ms.
+ * With one option off, Algorithm 1 runs step by step as described above
+ * (ProjectedSteps: a safeguarded Newton iteration on kappa over the free
+ * variables, each round O(n), accepted only when feasible and not worse than
+ * the current point; BlockRelease: the projected step puts back the bounds
+ * that should stay).
  *
  * TimeLimit (t_opt) is checked every ClockCheckWork object visits; at any stop
  * (time, MaxIterations, MaxSteps) the current point is returned, feasible and
@@ -138,8 +153,31 @@ private:
     PinnedLow = 3 ///< tmax invalid or 0: left at rmin, not in the problem
   };
 
+  /// Sums over the objects gathered with the start point (one pass).
+  struct StartSums
+  {
+    double CostLow = 0.0, CostHigh = 0.0; ///< cost(rmin), cost(1)
+    double CostTop = 0.0; ///< cost with every object whose c > 0 at 1, the others at rmin
+    double Cost = 0.0, Objective = 0.0;   ///< cost and f of the start point
+    double FixedCost = 0.0;  ///< sum tmax_i r_i over the start's bounds
+    double FreeWeight = 0.0; ///< sum tmax_i g_i over the start's free objects
+    double Weight = 0.0;     ///< sum tmax_i g_i over every object
+    std::size_t Invalid = 0, Zero = 0;
+  };
+
   double Power(double x) const; // x^gamma with fast paths
-  void BetaReduce(double* r, double budget, double cost);
+  template <int Kind>
+  void Prepare(const ResolutionProblem& problem, double* r, bool warmStart, StartSums& sums);
+  template <int Kind>
+  void BetaReduce(double* r, double budget, StartSums& sums);
+  void SolveMultiplier(double* r, double budget, double rawBudget, const StartSums& sums, Result& result);
+  template <int Kind>
+  void Finish(double* r, double kappa, double rawBudget, Result& result);
+  double Classify(double low, double high, double& slope, std::size_t& count);
+  bool SolveCandidates(double& low, double& high, double fixedCost, double slope,
+    std::size_t count, double budget, double& kappa);
+  void Report(const double* r, double budget, double rawBudget, Result& result);
+  double BoundKappa() const;
   double ClosedForm(double* r, double budget);
   bool ProjectedStep(double* r, double slack, double kappa0, double& objective, std::size_t& changes);
   std::size_t LineStep(double* r, double kappa, double& objective);
@@ -150,8 +188,9 @@ private:
   // Per-object data of the current call (sized to the largest n seen).
   std::vector<double> T, Lo, C, G, Scratch;
   std::vector<std::uint8_t> State;
-  std::vector<std::uint32_t> Order; // warm-start reduction order
-  std::vector<std::int32_t> Key;     // its buckets
+  std::vector<std::uint32_t> Order; // candidates of the multiplier search
+  std::vector<std::int32_t> Key;     // warm-start reduction buckets
+  std::vector<double> BucketCost;    // reducible cost per bucket
   // Current call.
   std::size_t N = 0;
   double Alpha = 1.0, Gamma = 0.5;
