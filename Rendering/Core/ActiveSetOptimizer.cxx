@@ -9,8 +9,17 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <type_traits>
 #if defined(__SSE2__)
 #include <emmintrin.h>
+#endif
+
+// The lane helpers below run per pair of objects inside O(n) loops: a call
+// there costs more than the work.
+#if defined(__GNUC__)
+#define TIMECRITICAL_LANE_INLINE inline __attribute__((always_inline))
+#else
+#define TIMECRITICAL_LANE_INLINE inline
 #endif
 
 namespace timecritical
@@ -67,7 +76,7 @@ int Bucket(double key)
 /// x^gamma and one term of eq. 11 for the eq. 10 exponents (Kind = 1: alpha
 /// = 1, 2: alpha = 2, 3: alpha = -1/2) without pow(); Kind 0 is any alpha.
 template <int Kind>
-inline double PowerOf(double x, double gamma)
+TIMECRITICAL_LANE_INLINE double PowerOf(double x, double gamma)
 {
   if constexpr (Kind == 1)
   {
@@ -91,7 +100,7 @@ inline double PowerOf(double x, double gamma)
 }
 
 template <int Kind>
-inline double TermOf(double c, double alpha, double r)
+TIMECRITICAL_LANE_INLINE double TermOf(double c, double alpha, double r)
 {
   if constexpr (Kind == 1)
   {
@@ -119,6 +128,27 @@ int KindOf(double alpha)
   return alpha == 1.0 ? 1 : (alpha == 2.0 ? 2 : (alpha == -0.5 ? 3 : 0));
 }
 
+/// f(std::integral_constant<int, KindOf(alpha)>()).
+template <class F>
+void WithKind(double alpha, F&& f)
+{
+  switch (KindOf(alpha))
+  {
+    case 1:
+      f(std::integral_constant<int, 1>());
+      break;
+    case 2:
+      f(std::integral_constant<int, 2>());
+      break;
+    case 3:
+      f(std::integral_constant<int, 3>());
+      break;
+    default:
+      f(std::integral_constant<int, 0>());
+      break;
+  }
+}
+
 // The O(n) passes of the multiplier search are written once over "lanes":
 // Lane1 (one double: the portable code, and the tail of every loop) and,
 // with SSE2, Lane2 (two doubles per instruction, branch-free: the bound tests
@@ -141,6 +171,7 @@ struct Lane1
   static M And(M a, M b) { return a && b; }
   static M Or(M a, M b) { return a || b; }
   static M AndNot(M a, M b) { return !a && b; } ///< (not a) and b
+  static M Xor(M a, M b) { return a != b; }
   static V Select(M m, V a, V b) { return m ? a : b; }
   static V Keep(M m, V a) { return m ? a : 0.0; }
   static V KeepNot(M m, V a) { return m ? 0.0 : a; }
@@ -172,6 +203,7 @@ struct Lane2
   static M And(M a, M b) { return _mm_and_pd(a, b); }
   static M Or(M a, M b) { return _mm_or_pd(a, b); }
   static M AndNot(M a, M b) { return _mm_andnot_pd(a, b); }
+  static M Xor(M a, M b) { return _mm_xor_pd(a, b); }
   static V Select(M m, V a, V b) { return _mm_or_pd(_mm_and_pd(m, a), _mm_andnot_pd(m, b)); }
   static V Keep(M m, V a) { return _mm_and_pd(m, a); }
   static V KeepNot(M m, V a) { return _mm_andnot_pd(m, a); }
@@ -201,7 +233,7 @@ std::size_t CountBits(unsigned bits)
 }
 
 template <class L, int Kind>
-typename L::V PowerLanes(typename L::V x, double gamma)
+TIMECRITICAL_LANE_INLINE typename L::V PowerLanes(typename L::V x, double gamma)
 {
   if constexpr (Kind == 1)
   {
@@ -218,7 +250,7 @@ typename L::V PowerLanes(typename L::V x, double gamma)
 }
 
 template <class L, int Kind>
-typename L::V TermLanes(typename L::V c, double alpha, typename L::V r)
+TIMECRITICAL_LANE_INLINE typename L::V TermLanes(typename L::V c, double alpha, typename L::V r)
 {
   if constexpr (Kind == 1)
   {
@@ -311,68 +343,121 @@ void PrepareLanes(const PrepareData& d, std::size_t begin, std::size_t end, Prep
   }
 }
 
-/// Warm-start reduction, first pass: bucket of g_i / r_i of every reducible
-/// object (-1: not reducible) and what each bucket gives when reduced by
-/// beta, summed per lane (consecutive objects mostly share a bucket: one
-/// table would chain every addition on the previous one).
+/// The warm-start reduction (section 5.3.1, see PlanReduction): objects in
+/// buckets below Cut reduced by Beta, those in bucket Cut by the fraction
+/// Theta of that; Cut = KeyBuckets reduces every reducible object.
+struct ReductionPlan
+{
+  double Below = -1.0, Upper = -1.0; ///< bucket(v) < Cut iff v <= Below, <= Cut iff v <= Upper
+  double Theta = 1.0, Beta = 0.8;
+};
+
+/// The largest value whose bucket is below b (-1: none): buckets are
+/// intervals of the doubles, so the plan compares values, not keys.
+double BucketFloor(int b)
+{
+  if (b <= 0)
+  {
+    return -1.0;
+  }
+  if (b >= KeyBuckets - 1)
+  {
+    return Infinity;
+  }
+  const std::uint64_t bits = (static_cast<std::uint64_t>(b / 2) << 52) |
+    (b % 2 ? 0x6a09e667f3bcdull : 0ull);
+  const std::uint64_t below = bits - 1;
+  double value = 0.0;
+  std::memcpy(&value, &below, sizeof(value));
+  return value;
+}
+
+/// One object's start point after the reduction.
 template <class L>
-void BucketLanes(const double* t, const double* g, const double* lo, const double* r, double beta,
-  std::size_t begin, std::size_t end, std::int32_t* keys, double* bucketCost)
+TIMECRITICAL_LANE_INLINE typename L::V ReducedLanes(typename L::V t, typename L::V g,
+  typename L::V lo, typename L::V x, const ReductionPlan& plan)
 {
   using V = typename L::V;
-  const V zero = L::Set(0.0), b = L::Set(beta);
-  for (std::size_t i = begin; i < end; i += L::Width)
+  using M = typename L::M;
+  const V reduced = L::Max(lo, L::Set(plan.Beta) * x);
+  const V value = g / x;
+  const M reducible = L::And(L::Lt(L::Set(0.0), t), L::Lt(lo, x));
+  const M below = L::Le(value, L::Set(plan.Below));
+  const M inCut = L::AndNot(below, L::Le(value, L::Set(plan.Upper)));
+  const V partial = x - L::Set(plan.Theta) * (x - reduced);
+  return L::Select(L::And(reducible, below), reduced, L::Select(L::And(reducible, inCut), partial, x));
+}
+
+/// What each bucket of g_i / r_i gives when its objects are reduced by beta,
+/// summed per lane (consecutive objects mostly share a bucket: one table
+/// would chain every addition on the previous one).
+template <class L>
+TIMECRITICAL_LANE_INLINE void BucketLanes(typename L::V t, typename L::V g, typename L::V lo, typename L::V x, double beta,
+  double* bucketCost)
+{
+  const unsigned reducible = L::Bits(L::And(L::Lt(L::Set(0.0), t), L::Lt(lo, x)));
+  if (reducible == 0)
   {
-    const V ti = L::Load(t + i), loi = L::Load(lo + i), x = L::Load(r + i);
-    const unsigned reducible = L::Bits(L::And(L::Lt(zero, ti), L::Lt(loi, x)));
-    alignas(16) double value[L::Width], saved[L::Width];
-    L::Store(value, L::Load(g + i) / x);
-    L::Store(saved, ti * (x - L::Max(loi, b * x)));
-    for (std::size_t k = 0; k < L::Width; ++k)
+    return;
+  }
+  alignas(16) double value[L::Width], saved[L::Width];
+  L::Store(value, g / x);
+  L::Store(saved, t * (x - L::Max(lo, L::Set(beta) * x)));
+  for (std::size_t k = 0; k < L::Width; ++k)
+  {
+    if ((reducible >> k) & 1u)
     {
-      const int key = (reducible >> k) & 1u ? Bucket(value[k]) : -1;
-      keys[i + k] = key;
-      if (key >= 0)
-      {
-        bucketCost[k * KeyBuckets + static_cast<std::size_t>(key)] += saved[k];
-      }
+      bucketCost[k * KeyBuckets + static_cast<std::size_t>(Bucket(value[k]))] += saved[k];
     }
   }
 }
 
-/// Warm-start reduction, last pass: objects with 0 <= key < cut, or key =
-/// cut and index < last, reduced by beta; cost and objective of the result.
-template <class L, int Kind>
-void ReduceLanes(const double* t, const double* lo, const double* c, const std::int32_t* keys,
-  double* r, double beta, double alpha, double cut, double last, std::size_t begin,
-  std::size_t end, typename L::V& cost, typename L::V& objective)
+template <class L>
+void BucketPassLanes(const double* t, const double* g, const double* lo, const double* r,
+  double beta, std::size_t begin, std::size_t end, double* bucketCost)
 {
-  using V = typename L::V;
-  const V zero = L::Set(0.0), b = L::Set(beta), vCut = L::Set(cut), vLast = L::Set(last);
-  const V below = L::Set(cut - 1.0), step = L::Set(static_cast<double>(L::Width));
-  alignas(16) double first[L::Width];
-  for (std::size_t k = 0; k < L::Width; ++k)
+  for (std::size_t i = begin; i < end; i += L::Width)
   {
-    first[k] = static_cast<double>(begin + k);
+    BucketLanes<L>(L::Load(t + i), L::Load(g + i), L::Load(lo + i), L::Load(r + i), beta, bucketCost);
   }
-  V index = L::Load(first);
-  for (std::size_t i = begin; i < end; i += L::Width, index = index + step)
+}
+
+/// Applies a reduction: r becomes the start point; its cost and objective.
+template <class L, int Kind>
+void ApplyLanes(const double* t, const double* g, const double* lo, const double* c, double* r,
+  const ReductionPlan& plan, double alpha, std::size_t begin, std::size_t end, typename L::V& cost,
+  typename L::V& objective)
+{
+  for (std::size_t i = begin; i < end; i += L::Width)
   {
-    const V key = L::LoadKeys(keys + i);
-    const V limit = L::Select(L::Lt(index, vLast), vCut, below);
-    const V x = L::Load(r + i);
-    const V y = L::Select(L::And(L::Le(zero, key), L::Le(key, limit)), L::Max(L::Load(lo + i), b * x), x);
+    const typename L::V ti = L::Load(t + i);
+    const typename L::V y = ReducedLanes<L>(ti, L::Load(g + i), L::Load(lo + i), L::Load(r + i), plan);
     L::Store(r + i, y);
-    cost = cost + L::Load(t + i) * y;
+    cost = cost + ti * y;
     objective = objective + TermLanes<L, Kind>(L::Load(c + i), alpha, y);
   }
 }
 
+/// Objects of the multiplier search, structure of arrays.
+struct Objects
+{
+  const double *T, *G, *Lo;
+};
+struct CandidateArrays
+{
+  double *T, *G, *Lo;
+};
+CandidateArrays CandidatesOf(std::vector<double>& storage)
+{
+  const std::size_t n = storage.size() / 3;
+  return { storage.data(), storage.data() + n, storage.data() + 2 * n };
+}
+
 /// Classification of the objects over [low, high] (see ActiveSetOptimizer::Classify).
-template <class L>
-void ClassifyLanes(const double* t, const double* g, const double* lo, double low, double high,
-  std::size_t begin, std::size_t end, typename L::V& fixed, typename L::V& slope,
-  std::uint32_t* candidates, std::size_t& count)
+template <class L, bool Buckets>
+void ClassifyLanes(const Objects& o, double low, double high, std::size_t begin, std::size_t end,
+  typename L::V& fixed, typename L::V& slope, std::uint32_t* candidates, std::size_t& count,
+  const double* r, double beta, double* bucketCost)
 {
   using V = typename L::V;
   using M = typename L::M;
@@ -380,7 +465,7 @@ void ClassifyLanes(const double* t, const double* g, const double* lo, double lo
   std::size_t m = count;
   for (std::size_t i = begin; i < end; i += L::Width)
   {
-    const V ti = L::Load(t + i), gi = L::Load(g + i), loi = L::Load(lo + i);
+    const V ti = L::Load(o.T + i), gi = L::Load(o.G + i), loi = L::Load(o.Lo + i);
     const V yLow = vLow * gi, yHigh = vHigh * gi;
     const M upper = L::Le(one, yLow);
     const M lower = L::AndNot(upper, L::Le(yHigh, loi));
@@ -388,38 +473,91 @@ void ClassifyLanes(const double* t, const double* g, const double* lo, double lo
     fixed = fixed + L::Select(upper, ti, L::Keep(lower, ti * loi));
     slope = slope + L::Keep(free, ti * gi);
     const unsigned settled = L::Bits(L::Or(L::Or(upper, lower), free));
+    // Written always, kept when unsettled: no branch on the data.
     for (std::size_t k = 0; k < L::Width; ++k)
     {
       candidates[m] = static_cast<std::uint32_t>(i + k);
       m += ((settled >> k) & 1u) ^ 1u;
     }
+    if constexpr (Buckets)
+    {
+      BucketLanes<L>(ti, gi, loi, L::Load(r + i), beta, bucketCost);
+    }
   }
   count = m;
 }
 
-/// r = clamp(kappa g, rmin, 1) and its sums (see ActiveSetOptimizer::Finish).
+/// Sum over objects of tmax clamp(kappa g, rmin, 1) and of its slope at one
+/// or two kappas; moved: objects whose clamp changes form from previous.
+template <class L>
+struct PhiSums
+{
+  typename L::V Phi = L::Set(0.0), Slope = L::Set(0.0), PhiHigh = L::Set(0.0), SlopeHigh = L::Set(0.0);
+  std::size_t Moved = 0;
+};
+
+template <class L, bool Two, bool Track>
+void PhiLanes(const Objects& o, double kappa, double other, std::size_t begin, std::size_t end,
+  PhiSums<L>& s)
+{
+  using V = typename L::V;
+  using M = typename L::M;
+  const V one = L::Set(1.0), k = L::Set(kappa), k2 = L::Set(other);
+  for (std::size_t i = begin; i < end; i += L::Width)
+  {
+    const V ti = L::Load(o.T + i), gi = L::Load(o.G + i), loi = L::Load(o.Lo + i);
+    const V y = k * gi;
+    const M lower = L::Le(y, loi), upper = L::AndNot(lower, L::Le(one, y));
+    s.Phi = s.Phi + ti * L::Min(L::Max(y, loi), one);
+    s.Slope = s.Slope + L::KeepNot(L::Or(lower, upper), ti * gi);
+    if constexpr (Two || Track)
+    {
+      const V y2 = k2 * gi;
+      const M lower2 = L::Le(y2, loi), upper2 = L::AndNot(lower2, L::Le(one, y2));
+      if constexpr (Two)
+      {
+        s.PhiHigh = s.PhiHigh + ti * L::Min(L::Max(y2, loi), one);
+        s.SlopeHigh = s.SlopeHigh + L::KeepNot(L::Or(lower2, upper2), ti * gi);
+      }
+      if constexpr (Track)
+      {
+        s.Moved += CountBits(L::Bits(L::Or(L::Xor(lower, lower2), L::Xor(upper, upper2))));
+      }
+    }
+  }
+}
+
+/// r = clamp(kappa g, rmin, 1) and its sums (see ActiveSetOptimizer::Finish);
+/// with Start, also the objective of the start point: r reduced by plan.
 template <class L>
 struct FinishSums
 {
-  typename L::V Objective = L::Set(0.0), Cost = L::Set(0.0);
+  typename L::V Objective = L::Set(0.0), Cost = L::Set(0.0), StartObjective = L::Set(0.0);
   std::size_t Free = 0, Lower = 0, Upper = 0;
 };
 
-template <class L, int Kind>
+template <class L, int Kind, bool Start>
 void FinishLanes(const double* t, const double* g, const double* lo, const double* c, double* r,
-  double kappa, double alpha, std::size_t begin, std::size_t end, FinishSums<L>& s)
+  double kappa, double alpha, const ReductionPlan& plan, std::size_t begin, std::size_t end,
+  FinishSums<L>& s)
 {
   using V = typename L::V;
   using M = typename L::M;
   const V zero = L::Set(0.0), one = L::Set(1.0), k = L::Set(kappa);
   for (std::size_t i = begin; i < end; i += L::Width)
   {
-    const V ti = L::Load(t + i), loi = L::Load(lo + i);
+    const V ti = L::Load(t + i), loi = L::Load(lo + i), ci = L::Load(c + i);
     // kappa = infinity (time not binding): g = 0 stays at rmin, not NaN.
     const V gi = L::Load(g + i);
+    if constexpr (Start)
+    {
+      // As ApplyLanes sums it, so that both report the same f.
+      const V y = ReducedLanes<L>(ti, gi, loi, L::Load(r + i), plan);
+      s.StartObjective = s.StartObjective + TermLanes<L, Kind>(ci, alpha, y);
+    }
     const V x = L::Min(L::Max(L::Keep(L::Lt(zero, gi), k * gi), loi), one);
     L::Store(r + i, x);
-    s.Objective = s.Objective + TermLanes<L, Kind>(L::Load(c + i), alpha, x);
+    s.Objective = s.Objective + TermLanes<L, Kind>(ci, alpha, x);
     s.Cost = s.Cost + ti * x;
     const M inProblem = L::Lt(zero, ti);
     const M lower = L::Le(x, loi);
@@ -471,7 +609,7 @@ void ActiveSetOptimizer::Reserve(std::size_t n)
     this->Scratch.resize(n);
     this->State.resize(n);
     this->Order.resize(n);
-    this->Key.resize(n);
+    this->Candidates.resize(3 * n);
   }
   if (this->BucketCost.empty())
   {
@@ -536,111 +674,167 @@ void ActiveSetOptimizer::Prepare(
   sums.Zero = wide.Zero + tail.Zero;
 }
 
-template <int Kind>
-void ActiveSetOptimizer::BetaReduce(double* r, double budget, StartSums& sums)
+void ActiveSetOptimizer::BucketPass(const double* r, double beta)
+{
+  const std::size_t n = this->N;
+  const std::size_t body = n - n % LaneN::Width;
+  double* bucketCost = this->BucketCost.data();
+  std::fill(bucketCost, bucketCost + LaneN::Width * KeyBuckets, 0.0);
+  BucketPassLanes<LaneN>(this->T.data(), this->G.data(), this->Lo.data(), r, beta, 0, body, bucketCost);
+  BucketPassLanes<Lane1>(this->T.data(), this->G.data(), this->Lo.data(), r, beta, body, n, bucketCost);
+  this->Work += n;
+}
+
+ActiveSetOptimizer::Reduction ActiveSetOptimizer::PlanReduction(
+  double* r, double budget, StartSums& sums, bool bucketsSummed)
 {
   // Section 5.3.1: reduce resolutions by Beta, least valuable objects first,
   // until the time constraint holds. "Value" is the marginal benefit per unit
   // of time, rho_i = -f_i'(r_i) / tmax_i = (g_i / r_i)^(alpha+1); ordering by
-  // g_i / r_i is the same and needs no pow(). Per round, one pass buckets the
-  // objects (half octaves) and sums what each bucket gives; the buckets below
-  // the one that covers the excess are reduced whole, that one in index order
-  // (what a stable sort would do) up to the object found by a scan: no sort,
-  // and the reduction is one more pass that also sums cost and objective.
-  // The start's working-set sums stay those of the unreduced point: the
-  // previous frame's free set predicts this frame's multiplier better.
-  const double beta = this->Opts.Beta > 0.0 && this->Opts.Beta < 1.0 ? this->Opts.Beta : 0.8;
-  const std::size_t n = this->N;
-  const std::size_t body = n - n % LaneN::Width;
+  // g_i / r_i is the same and needs no pow(). The objects are bucketed (half
+  // octaves) with what each bucket gives (BucketPass, or the first
+  // classification pass of the multiplier search, which reads the same
+  // data); the buckets below the one that covers the excess are reduced by
+  // Beta, that one by the fraction of it that spends the budget exactly (an
+  // order within a half octave would be arbitrary). No sort, and the plan is
+  // applied in the pass that needs the start point. When every reducible
+  // object reduced once is not enough, the round is applied and repeated.
+  Reduction plan;
+  plan.Beta = this->Opts.Beta > 0.0 && this->Opts.Beta < 1.0 ? this->Opts.Beta : 0.8;
   double* bucketCost = this->BucketCost.data();
-  const double *t = this->T.data(), *lo = this->Lo.data(), *g = this->G.data(), *c = this->C.data();
-  std::int32_t* keys = this->Key.data();
-  double excess = sums.Cost - budget;
-  for (int round = 0; excess > 0.0 && round < 1000; ++round)
+  const double rounding = 4.0 * static_cast<double>(this->N) * DBL_EPSILON * sums.Cost;
+  for (int round = 0; sums.Cost > budget && round < 1000; ++round)
   {
-    std::fill(bucketCost, bucketCost + LaneN::Width * KeyBuckets, 0.0);
-    BucketLanes<LaneN>(t, g, lo, r, beta, 0, body, keys, bucketCost);
-    BucketLanes<Lane1>(t, g, lo, r, beta, body, n, keys, bucketCost);
-    this->Work += n;
-    int cut = 0;
-    double below = 0.0, any = 0.0;
-    for (int b = 0; b < KeyBuckets; ++b)
+    if (!bucketsSummed)
+    {
+      this->BucketPass(r, plan.Beta);
+    }
+    bucketsSummed = false;
+    double total = 0.0;
+    for (std::size_t b = 0; b < static_cast<std::size_t>(KeyBuckets); ++b)
     {
       for (std::size_t k = 1; k < LaneN::Width; ++k)
       {
-        bucketCost[b] += bucketCost[k * KeyBuckets + static_cast<std::size_t>(b)];
+        bucketCost[b] += bucketCost[k * KeyBuckets + b];
       }
-      any += bucketCost[b];
+      total += bucketCost[b];
     }
-    if (!(any > 0.0))
+    if (!(total > 0.0))
     {
       break;
     }
-    for (; cut < KeyBuckets && below + bucketCost[cut] < excess; ++cut)
+    const double excess = sums.Cost - budget;
+    double below = 0.0;
+    plan.Cut = 0;
+    for (; plan.Cut < KeyBuckets && below + bucketCost[plan.Cut] < excess; ++plan.Cut)
     {
-      below += bucketCost[cut];
+      below += bucketCost[plan.Cut];
     }
-    // In the cut bucket, objects up to the one that covers the rest.
-    std::size_t last = n;
-    if (cut < KeyBuckets)
+    plan.Active = true;
+    if (plan.Cut < KeyBuckets)
     {
-      const double need = excess - below;
-      double given = 0.0;
-      for (std::size_t i = 0; i < n; ++i)
-      {
-        if (keys[i] == cut)
-        {
-          given += t[i] * (r[i] - std::max(lo[i], beta * r[i]));
-          if (given >= need)
-          {
-            last = i + 1;
-            break;
-          }
-        }
-      }
+      // Rounded up so that the start's cost cannot land above the budget.
+      plan.Theta = std::min(1.0, (excess - below + rounding) / bucketCost[plan.Cut]);
+      return plan;
     }
-    LaneN::V wideCost = LaneN::Set(0.0), wideObjective = LaneN::Set(0.0);
-    double cost = 0.0, objective = 0.0;
-    ReduceLanes<LaneN, Kind>(t, lo, c, keys, r, beta, this->Alpha, cut,
-      static_cast<double>(last), 0, body, wideCost, wideObjective);
-    ReduceLanes<Lane1, Kind>(t, lo, c, keys, r, beta, this->Alpha, cut,
-      static_cast<double>(last), body, n, cost, objective);
-    this->Work += n;
-    sums.Cost = cost + LaneN::Sum(wideCost);
-    sums.Objective = objective + LaneN::Sum(wideObjective);
-    excess = sums.Cost - budget;
+    plan.Theta = 1.0;
+    WithKind(this->Alpha, [&](auto kind) { this->ApplyReduction<decltype(kind)::value>(r, plan, sums); });
+    plan.Active = false;
   }
-  if (excess > 0.0) // rounding only: rmin is feasible
+  if (sums.Cost > budget) // rounding only: rmin is feasible
   {
     sums.Cost = sums.Objective = 0.0;
-    for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t i = 0; i < this->N; ++i)
     {
-      r[i] = lo[i];
-      sums.Cost += t[i] * r[i];
-      sums.Objective += ResolutionProblem::Term(c[i], this->Alpha, r[i]);
+      r[i] = this->Lo[i];
+      sums.Cost += this->T[i] * r[i];
+      sums.Objective += ResolutionProblem::Term(this->C[i], this->Alpha, r[i]);
     }
   }
+  return plan;
 }
 
-double ActiveSetOptimizer::Classify(double low, double high, double& slope, std::size_t& count)
+template <int Kind>
+void ActiveSetOptimizer::ApplyReduction(double* r, const Reduction& plan, StartSums& sums)
+{
+  const std::size_t n = this->N;
+  const std::size_t body = n - n % LaneN::Width;
+  const ReductionPlan lanes{ BucketFloor(plan.Cut), BucketFloor(plan.Cut + 1), plan.Theta, plan.Beta };
+  LaneN::V wideCost = LaneN::Set(0.0), wideObjective = LaneN::Set(0.0);
+  double cost = 0.0, objective = 0.0;
+  ApplyLanes<LaneN, Kind>(this->T.data(), this->G.data(), this->Lo.data(), this->C.data(), r,
+    lanes, this->Alpha, 0, body, wideCost, wideObjective);
+  ApplyLanes<Lane1, Kind>(this->T.data(), this->G.data(), this->Lo.data(), this->C.data(), r,
+    lanes, this->Alpha, body, n, cost, objective);
+  this->Work += n;
+  sums.Cost = LaneN::Sum(wideCost) + cost;
+  sums.Objective = LaneN::Sum(wideObjective) + objective;
+}
+
+double ActiveSetOptimizer::Classify(
+  double low, double high, double& slope, std::size_t& count, const double* bucketsOf, double beta)
 {
   // Every object whose clamp(kappa g_i, rmin_i, 1) has the same form over
   // [low, high] goes into an affine sum, fixed + kappa slope; the others
-  // (a breakpoint rmin_i / g_i or 1 / g_i inside) become candidates. Objects
-  // out of the problem have T = G = 0: at rmin, costing nothing.
+  // (a breakpoint rmin_i / g_i or 1 / g_i inside) are the candidates.
+  // Objects out of the problem have T = G = 0: at rmin, costing nothing.
+  // With bucketsOf, the same pass does the warm-start reduction's BucketPass.
   const std::size_t n = this->N;
   const std::size_t body = n - n % LaneN::Width;
+  const Objects all{ this->T.data(), this->G.data(), this->Lo.data() };
+  std::uint32_t* candidates = this->Order.data();
+  double* bucketCost = this->BucketCost.data();
   LaneN::V wideFixed = LaneN::Set(0.0), wideSlope = LaneN::Set(0.0);
   double fixed = 0.0;
   slope = 0.0;
   count = 0;
-  ClassifyLanes<LaneN>(this->T.data(), this->G.data(), this->Lo.data(), low, high, 0, body,
-    wideFixed, wideSlope, this->Order.data(), count);
-  ClassifyLanes<Lane1>(this->T.data(), this->G.data(), this->Lo.data(), low, high, body, n,
-    fixed, slope, this->Order.data(), count);
-  this->Work += n;
+  if (bucketsOf)
+  {
+    std::fill(bucketCost, bucketCost + LaneN::Width * KeyBuckets, 0.0);
+    ClassifyLanes<LaneN, true>(
+      all, low, high, 0, body, wideFixed, wideSlope, candidates, count, bucketsOf, beta, bucketCost);
+    ClassifyLanes<Lane1, true>(
+      all, low, high, body, n, fixed, slope, candidates, count, bucketsOf, beta, bucketCost);
+  }
+  else
+  {
+    ClassifyLanes<LaneN, false>(
+      all, low, high, 0, body, wideFixed, wideSlope, candidates, count, nullptr, beta, bucketCost);
+    ClassifyLanes<Lane1, false>(
+      all, low, high, body, n, fixed, slope, candidates, count, nullptr, beta, bucketCost);
+  }
+  // Their data side by side, for the lane passes of the search.
+  const CandidateArrays out = CandidatesOf(this->Candidates);
+  for (std::size_t j = 0; j < count; ++j)
+  {
+    const std::uint32_t i = candidates[j];
+    out.T[j] = all.T[i];
+    out.G[j] = all.G[i];
+    out.Lo[j] = all.Lo[i];
+  }
+  this->Work += n + count;
   slope += LaneN::Sum(wideSlope);
   return fixed + LaneN::Sum(wideFixed);
+}
+
+template <bool Two, bool Track>
+void ActiveSetOptimizer::CandidatePhi(
+  std::size_t count, double kappa, double other, double& phi, double& slope, double& phiOther,
+  double& slopeOther, std::size_t& moved)
+{
+  const CandidateArrays c = CandidatesOf(this->Candidates);
+  const Objects o{ c.T, c.G, c.Lo };
+  const std::size_t body = count - count % LaneN::Width;
+  PhiSums<LaneN> wide;
+  PhiLanes<LaneN, Two, Track>(o, kappa, other, 0, body, wide);
+  PhiSums<Lane1> tail;
+  PhiLanes<Lane1, Two, Track>(o, kappa, other, body, count, tail);
+  this->Work += count;
+  phi += LaneN::Sum(wide.Phi) + tail.Phi;
+  slope += LaneN::Sum(wide.Slope) + tail.Slope;
+  phiOther += LaneN::Sum(wide.PhiHigh) + tail.PhiHigh;
+  slopeOther += LaneN::Sum(wide.SlopeHigh) + tail.SlopeHigh;
+  moved = wide.Moved + tail.Moved;
 }
 
 bool ActiveSetOptimizer::SolveCandidates(double& low, double& high, double fixedCost,
@@ -652,38 +846,21 @@ bool ActiveSetOptimizer::SolveCandidates(double& low, double& high, double fixed
   // meets the budget, a Newton step crossed no breakpoint (it then solved
   // the linear piece it is on) or the bracket is down to rounding; otherwise
   // false with the bracket narrowed.
-  const std::uint32_t* candidates = this->Order.data();
   const double tolerance = std::max(1e-13, 2.0 * static_cast<double>(this->N) * DBL_EPSILON);
   double k = low;
   double previous = -1.0;
   for (int round = 0; round < MaxNewtonRounds; ++round)
   {
-    double phi = fixedCost + k * slope, d = slope;
+    double phi = fixedCost + k * slope, d = slope, unused = 0.0;
     std::size_t moved = 0;
-    for (std::size_t j = 0; j < count; ++j)
+    if (previous >= 0.0)
     {
-      const std::uint32_t i = candidates[j];
-      const double t = this->T[i], lo = this->Lo[i], y = k * this->G[i];
-      if (previous >= 0.0)
-      {
-        const double x = previous * this->G[i];
-        moved += (x <= lo) != (y <= lo) || (x >= 1.0) != (y >= 1.0);
-      }
-      if (y <= lo)
-      {
-        phi += t * lo;
-      }
-      else if (y >= 1.0)
-      {
-        phi += t;
-      }
-      else
-      {
-        phi += t * y;
-        d += t * this->G[i];
-      }
+      this->CandidatePhi<false, true>(count, k, previous, phi, d, unused, unused, moved);
     }
-    this->Work += count;
+    else
+    {
+      this->CandidatePhi<false, false>(count, k, 0.0, phi, d, unused, unused, moved);
+    }
     if (std::abs(phi - budget) <= tolerance * budget || (previous >= 0.0 && moved == 0))
     {
       kappa = k;
@@ -708,19 +885,31 @@ bool ActiveSetOptimizer::SolveCandidates(double& low, double& high, double fixed
 }
 
 template <int Kind>
-void ActiveSetOptimizer::Finish(double* r, double kappa, double rawBudget, Result& result)
+void ActiveSetOptimizer::Finish(
+  double* r, double kappa, double rawBudget, const Reduction& plan, Result& result)
 {
   // r_i = clamp(kappa g_i, rmin_i, 1) and the report, in one pass: every
   // multiplier of eq. 16 is non-negative at such a point by construction.
+  // A planned warm-start reduction is applied here only to report f at the
+  // start point: the pass reads r anyway, and nothing else needs that point.
   const std::size_t n = this->N;
   const double alpha = this->Alpha;
   const std::size_t body = n - n % LaneN::Width;
+  const ReductionPlan lanes{ BucketFloor(plan.Cut), BucketFloor(plan.Cut + 1), plan.Theta, plan.Beta };
+  const double *t = this->T.data(), *g = this->G.data(), *lo = this->Lo.data(), *c = this->C.data();
   FinishSums<LaneN> wide;
-  FinishLanes<LaneN, Kind>(this->T.data(), this->G.data(), this->Lo.data(), this->C.data(), r,
-    kappa, alpha, 0, body, wide);
   FinishSums<Lane1> tail;
-  FinishLanes<Lane1, Kind>(this->T.data(), this->G.data(), this->Lo.data(), this->C.data(), r,
-    kappa, alpha, body, n, tail);
+  if (plan.Active)
+  {
+    FinishLanes<LaneN, Kind, true>(t, g, lo, c, r, kappa, alpha, lanes, 0, body, wide);
+    FinishLanes<Lane1, Kind, true>(t, g, lo, c, r, kappa, alpha, lanes, body, n, tail);
+    result.InitialObjective = LaneN::Sum(wide.StartObjective) + tail.StartObjective;
+  }
+  else
+  {
+    FinishLanes<LaneN, Kind, false>(t, g, lo, c, r, kappa, alpha, lanes, 0, body, wide);
+    FinishLanes<Lane1, Kind, false>(t, g, lo, c, r, kappa, alpha, lanes, body, n, tail);
+  }
   this->Work += n;
   const double cost = LaneN::Sum(wide.Cost) + tail.Cost;
   result.Objective = LaneN::Sum(wide.Objective) + tail.Objective;
@@ -737,7 +926,7 @@ void ActiveSetOptimizer::Finish(double* r, double kappa, double rawBudget, Resul
 }
 
 void ActiveSetOptimizer::SolveMultiplier(
-  double* r, double budget, double rawBudget, const StartSums& sums, Result& result)
+  double* r, double budget, double rawBudget, StartSums& sums, Result& result)
 {
   // Algorithm 1 with both options on: W = {time constraint}, every bound
   // resolved inside one projected step, so the answer is r_i = clamp(kappa
@@ -748,9 +937,15 @@ void ActiveSetOptimizer::SolveMultiplier(
   // breakpoint inside: a few hundred of 100,000 for a frame-to-frame change),
   // and the root is found among those. When the interval misses the root, a
   // Newton step from its near end centres the next one, wider.
+  // The start point (with its warm-start reduction) is not needed for that:
+  // its reduction is planned in the first pass and applied only to report f
+  // there, or when the search stops early and the start may be the answer.
   const std::size_t n = this->N;
   result.InitialObjective = sums.Objective;
   result.State = Status::IterationLimit;
+  Reduction plan;
+  bool reduce = sums.Cost > budget;
+  const double beta = this->Opts.Beta > 0.0 && this->Opts.Beta < 1.0 ? this->Opts.Beta : 0.8;
   double kLo = 0.0, kHi = Infinity; // phi(kLo) <= budget < phi(kHi)
   double solution = -1.0;
   if (this->Opts.MaxIterations > 0 && this->Opts.MaxSteps > 0)
@@ -764,6 +959,8 @@ void ActiveSetOptimizer::SolveMultiplier(
     {
       solution = Infinity; // objects with c = 0 stay at rmin: the time is not binding
     }
+    // The start's free set: the previous frame's when warm (taken before the
+    // reduction, which only scales it), else none.
     double kappa = sums.FreeWeight > 0.0 && budget > sums.FixedCost
       ? (budget - sums.FixedCost) / sums.FreeWeight
       : budget / sums.Weight;
@@ -791,21 +988,18 @@ void ActiveSetOptimizer::SolveMultiplier(
       const double high = std::min({ kHi, kappa * spread, DBL_MAX });
       double slope = 0.0;
       std::size_t count = 0;
-      const double fixedCost = this->Classify(low, high, slope, count);
+      const double fixedCost = this->Classify(low, high, slope, count, reduce ? r : nullptr, beta);
+      if (reduce)
+      {
+        plan = this->PlanReduction(r, budget, sums, true);
+        result.InitialObjective = sums.Objective;
+        reduce = false;
+      }
       // phi and its slope at both ends from the affine part and the candidates.
       double phiLow = fixedCost + low * slope, phiHigh = fixedCost + high * slope;
       double dLow = slope, dHigh = slope;
-      for (std::size_t j = 0; j < count; ++j)
-      {
-        const std::uint32_t i = this->Order[j];
-        const double t = this->T[i], g = this->G[i], lo = this->Lo[i];
-        const double yLow = low * g, yHigh = high * g;
-        phiLow += t * Clamp(yLow, lo, 1.0);
-        phiHigh += t * Clamp(yHigh, lo, 1.0);
-        dLow += yLow > lo && yLow < 1.0 ? t * g : 0.0;
-        dHigh += yHigh > lo && yHigh < 1.0 ? t * g : 0.0;
-      }
-      this->Work += count;
+      std::size_t unused = 0;
+      this->CandidatePhi<true, false>(count, low, high, phiLow, dLow, phiHigh, dHigh, unused);
       if (phiLow <= budget && budget <= phiHigh)
       {
         double root = low, rootLow = low, rootHigh = high;
@@ -833,7 +1027,17 @@ void ActiveSetOptimizer::SolveMultiplier(
   }
   if (solution < 0.0)
   {
-    // Stopped: the bracket's feasible end if it beats the start (anytime).
+    // Stopped: the start point, or the bracket's feasible end if it is
+    // better (anytime).
+    if (reduce)
+    {
+      plan = this->PlanReduction(r, budget, sums, false);
+    }
+    if (plan.Active)
+    {
+      WithKind(this->Alpha, [&](auto kind) { this->ApplyReduction<decltype(kind)::value>(r, plan, sums); });
+    }
+    result.InitialObjective = sums.Objective;
     bool moved = false;
     if (kLo > 0.0)
     {
@@ -865,21 +1069,14 @@ void ActiveSetOptimizer::SolveMultiplier(
     }
     return;
   }
-  switch (KindOf(this->Alpha))
+  if (reduce) // no search pass (the solution was known): plan it for f at the start
   {
-    case 1:
-      this->Finish<1>(r, solution, rawBudget, result);
-      break;
-    case 2:
-      this->Finish<2>(r, solution, rawBudget, result);
-      break;
-    case 3:
-      this->Finish<3>(r, solution, rawBudget, result);
-      break;
-    default:
-      this->Finish<0>(r, solution, rawBudget, result);
-      break;
+    plan = this->PlanReduction(r, budget, sums, false);
+    result.InitialObjective = sums.Objective;
   }
+  WithKind(this->Alpha, [&](auto kind) {
+    this->Finish<decltype(kind)::value>(r, solution, rawBudget, plan, result);
+  });
   result.State = solution < DBL_MAX || result.KKTResidual <= 1e-8 ? Status::Optimal
                                                                  : Status::IterationLimit;
 }
@@ -1466,30 +1663,21 @@ ActiveSetOptimizer::Result ActiveSetOptimizer::Solve(
     return finish();
   }
 
-  // Start point: rmin, or the previous resolutions reduced until feasible.
-  if (sums.Cost > budget)
-  {
-    switch (KindOf(this->Alpha))
-    {
-      case 1:
-        this->BetaReduce<1>(r, budget, sums);
-        break;
-      case 2:
-        this->BetaReduce<2>(r, budget, sums);
-        break;
-      case 3:
-        this->BetaReduce<3>(r, budget, sums);
-        break;
-      default:
-        this->BetaReduce<0>(r, budget, sums);
-        break;
-    }
-  }
+  // Start point: rmin, or the previous resolutions reduced until feasible
+  // (applied in SolveMultiplier's passes when it runs).
   const bool noIteration = !(timeLimit > 0.0);
   if (!noIteration && this->Opts.ProjectedSteps && this->Opts.BlockRelease)
   {
     this->SolveMultiplier(r, budget, rawBudget, sums, result);
     return finish();
+  }
+  if (sums.Cost > budget)
+  {
+    const Reduction plan = this->PlanReduction(r, budget, sums, false);
+    if (plan.Active)
+    {
+      WithKind(this->Alpha, [&](auto kind) { this->ApplyReduction<decltype(kind)::value>(r, plan, sums); });
+    }
   }
 
   // The paper's iteration (or one option off); without time to iterate, the

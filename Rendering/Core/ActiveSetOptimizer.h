@@ -168,12 +168,25 @@ private:
   double Power(double x) const; // x^gamma with fast paths
   template <int Kind>
   void Prepare(const ResolutionProblem& problem, double* r, bool warmStart, StartSums& sums);
+  /// The warm-start reduction: buckets below Cut by Beta, bucket Cut by Theta of that.
+  struct Reduction
+  {
+    bool Active = false;
+    int Cut = 0;
+    double Theta = 1.0, Beta = 0.8;
+  };
+  void BucketPass(const double* r, double beta);
+  Reduction PlanReduction(double* r, double budget, StartSums& sums, bool bucketsSummed);
   template <int Kind>
-  void BetaReduce(double* r, double budget, StartSums& sums);
-  void SolveMultiplier(double* r, double budget, double rawBudget, const StartSums& sums, Result& result);
+  void ApplyReduction(double* r, const Reduction& plan, StartSums& sums);
+  void SolveMultiplier(double* r, double budget, double rawBudget, StartSums& sums, Result& result);
   template <int Kind>
-  void Finish(double* r, double kappa, double rawBudget, Result& result);
-  double Classify(double low, double high, double& slope, std::size_t& count);
+  void Finish(double* r, double kappa, double rawBudget, const Reduction& plan, Result& result);
+  double Classify(double low, double high, double& slope, std::size_t& count,
+    const double* bucketsOf, double beta);
+  template <bool Two, bool Track>
+  void CandidatePhi(std::size_t count, double kappa, double other, double& phi, double& slope,
+    double& phiOther, double& slopeOther, std::size_t& moved);
   bool SolveCandidates(double& low, double& high, double fixedCost, double slope,
     std::size_t count, double budget, double& kappa);
   void Report(const double* r, double budget, double rawBudget, Result& result);
@@ -188,8 +201,8 @@ private:
   // Per-object data of the current call (sized to the largest n seen).
   std::vector<double> T, Lo, C, G, Scratch;
   std::vector<std::uint8_t> State;
-  std::vector<std::uint32_t> Order; // candidates of the multiplier search
-  std::vector<std::int32_t> Key;     // warm-start reduction buckets
+  std::vector<std::uint32_t> Order; // the multiplier search's candidates
+  std::vector<double> Candidates;   // their tmax, g and rmin
   std::vector<double> BucketCost;    // reducible cost per bucket
   // Current call.
   std::size_t N = 0;
