@@ -20,61 +20,11 @@
 #include "vtkTriangleFilter.h"
 #include "vtkTypeInt64Array.h"
 
-#include <algorithm>
-#include <array>
 #include <cmath>
+#include <string>
 
 namespace timecritical
 {
-namespace
-{
-// Removes from surface.Ids (and Cells) every triangle whose point set equals
-// an earlier one's, keeping the first; returns how many. O(n log n), by a
-// sort of the sorted id triples. By hand because VTK's vtkRemoveDuplicatePolys
-// (a std::set per polygon) took 14.5 s on a 1M-triangle sphere here, many
-// times the whole TOM build.
-size_t DropDuplicateTriangles(PreparedSurface& surface)
-{
-  const size_t n = surface.Cells.size();
-  std::vector<std::array<uint32_t, 4>> keys(n); // sorted ids, then the triangle
-  for (size_t t = 0; t < n; ++t)
-  {
-    std::array<uint32_t, 3> ids = { surface.Ids[3 * t], surface.Ids[3 * t + 1],
-      surface.Ids[3 * t + 2] };
-    std::sort(ids.begin(), ids.end());
-    keys[t] = { ids[0], ids[1], ids[2], static_cast<uint32_t>(t) };
-  }
-  std::sort(keys.begin(), keys.end());
-  std::vector<char> duplicate(n, 0);
-  size_t count = 0;
-  for (size_t k = 1; k < n; ++k)
-  {
-    if (keys[k][0] == keys[k - 1][0] && keys[k][1] == keys[k - 1][1] &&
-      keys[k][2] == keys[k - 1][2])
-    {
-      duplicate[keys[k][3]] = 1; // a later triangle of the same points
-      ++count;
-    }
-  }
-  if (count == 0)
-  {
-    return 0;
-  }
-  size_t kept = 0;
-  for (size_t t = 0; t < n; ++t)
-  {
-    if (!duplicate[t])
-    {
-      std::copy_n(&surface.Ids[3 * t], 3, &surface.Ids[3 * kept]);
-      surface.Cells[kept++] = surface.Cells[t];
-    }
-  }
-  surface.Ids.resize(3 * kept);
-  surface.Cells.resize(kept);
-  return count;
-}
-}
-
 SurfaceStatus PrepareSurface(vtkAlgorithm* filter, vtkPolyData* input, PreparedSurface& surface)
 {
   surface = PreparedSurface();
@@ -188,14 +138,6 @@ SurfaceStatus PrepareSurface(vtkAlgorithm* filter, vtkPolyData* input, PreparedS
     }
     surface.Cells.push_back(cellId);
   }
-  surface.NumberOfDuplicateTriangles = static_cast<vtkIdType>(DropDuplicateTriangles(surface));
-  if (surface.NumberOfDuplicateTriangles > 0)
-  {
-    vtkWarningWithObjectMacro(filter, "Dropping " << surface.NumberOfDuplicateTriangles
-                                                  << " duplicate triangles (the same three points "
-                                                     "as an earlier triangle).");
-    surface.NumberOfDroppedCells += surface.NumberOfDuplicateTriangles;
-  }
   return SurfaceStatus::Ready;
 }
 
@@ -215,6 +157,13 @@ void WriteOrderedSurface(vtkAlgorithm* filter, vtkPolyData* input, PreparedSurfa
     vtkWarningWithObjectMacro(
       filter, "Dropping " << result.DroppedDegenerateTriangles << " degenerate triangles.");
     surface.NumberOfDroppedCells += static_cast<vtkIdType>(result.DroppedDegenerateTriangles);
+  }
+  if (result.DroppedDuplicateTriangles > 0)
+  {
+    vtkWarningWithObjectMacro(filter, "Dropping " << result.DroppedDuplicateTriangles
+                                                  << " duplicate triangles (the same three points "
+                                                     "as an earlier triangle).");
+    surface.NumberOfDroppedCells += static_cast<vtkIdType>(result.DroppedDuplicateTriangles);
   }
   vtkPolyData* triangles = surface.Triangles;
 

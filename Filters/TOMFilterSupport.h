@@ -29,13 +29,11 @@ struct PreparedSurface
   vtkSmartPointer<vtkPolyData> Triangles;
   /// 3 coordinates per point of Triangles.
   std::vector<double> Points;
-  /// 3 point ids per triangle given to the cores (duplicates left out).
+  /// 3 point ids per triangle given to the cores.
   std::vector<uint32_t> Ids;
   /// The cell of Triangles each triangle of Ids comes from.
   std::vector<vtkIdType> Cells;
-  /// Triangles left out because an earlier one has the same three points.
-  vtkIdType NumberOfDuplicateTriangles = 0;
-  /// Vertex, line, degenerate and duplicate cells left out.
+  /// Vertex, line, degenerate and (after WriteOrderedSurface) duplicate cells left out.
   vtkIdType NumberOfDroppedCells = 0;
   /// Input points merged into coincident ones.
   vtkIdType NumberOfMergedPoints = 0;
@@ -51,11 +49,11 @@ enum class SurfaceStatus
 /**
  * Checks and prepares `input` for `filter`: rejects out-of-range point ids,
  * non-finite coordinates and inputs without surface cells; merges coincident
- * points; triangulates polygons and strips; drops vertices, lines,
- * degenerate cells and duplicate triangles (same three points, in any order:
- * what appending coincident copies gives, which would make the collapses
- * quadratic in the number of copies) with a warning on `filter`. Reports
- * progress up to 0.05.
+ * points; triangulates polygons and strips; drops
+ * vertices, lines and degenerate cells with a warning on `filter`. Duplicate
+ * triangles (same three points, in any order: what appending coincident
+ * copies gives) are the cores' to drop (TOMBuildResult), WriteOrderedSurface's
+ * to report. Reports progress up to 0.05.
  */
 SurfaceStatus PrepareSurface(vtkAlgorithm* filter, vtkPolyData* input, PreparedSurface& surface);
 
@@ -81,8 +79,9 @@ void SetCollapseOptions(Builder* filter, TOMBuildOptions& options)
 /**
  * Fills `output` with the points, point data, triangles and cell data of
  * `surface` in the TOM order of `result`, and the field data of `input`.
- * Warns on `filter` about triangles the core dropped and counts them in
- * `surface`. The caller then attaches the TOM (and merge-tree) arrays.
+ * Warns on `filter` about triangles the core dropped (degenerate, duplicate)
+ * and counts them in `surface`. The caller then attaches the TOM (and
+ * merge-tree) arrays.
  */
 void WriteOrderedSurface(vtkAlgorithm* filter, vtkPolyData* input, PreparedSurface& surface,
   const TOMBuildResult& result, vtkPolyData* output);

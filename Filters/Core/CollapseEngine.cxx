@@ -252,14 +252,75 @@ void CollapseEngine::ReadInput(const double* points, size_t numberOfPoints, cons
     rec.State = 0;
   }
 
+  this->FillTriangles();
+}
+
+//------------------------------------------------------------------------------
+void CollapseEngine::FillTriangles()
+{
+  this->T = static_cast<uint32_t>(this->InputTriOf.size());
   this->Tris.resize(this->T);
   for (uint32_t t = 0; t < this->T; ++t)
   {
-    const uint32_t* c = triangles + 3 * static_cast<size_t>(this->InputTriOf[t]);
+    const uint32_t* c = this->InputTriangles + 3 * static_cast<size_t>(this->InputTriOf[t]);
     this->Tris[t] = { { this->InternalIdOf[c[0]], this->InternalIdOf[c[1]],
                         this->InternalIdOf[c[2]] },
       0u };
   }
+}
+
+//------------------------------------------------------------------------------
+void CollapseEngine::DropDuplicateTriangles(TOMBuildResult& result)
+{
+  // Only after the classification met a duplicate (see ClassifyVertices):
+  // keeps the first of the triangles on the same three points, sorting their
+  // sorted corner triples, and restarts the setup on the rest.
+  struct Key
+  {
+    uint32_t C[3];
+    uint32_t Index; // into InputTriOf
+  };
+  std::vector<Key> keys(this->T);
+  for (uint32_t t = 0; t < this->T; ++t)
+  {
+    Key& k = keys[t];
+    std::copy(this->Tris[t].V, this->Tris[t].V + 3, k.C);
+    std::sort(k.C, k.C + 3);
+    k.Index = t;
+  }
+  std::sort(keys.begin(), keys.end(), [](const Key& a, const Key& b) {
+    return std::lexicographical_compare(a.C, a.C + 3, b.C, b.C + 3) ||
+      (std::equal(a.C, a.C + 3, b.C) && a.Index < b.Index);
+  });
+  std::vector<char> duplicate(this->T, 0);
+  for (size_t i = 1; i < keys.size(); ++i)
+  {
+    if (std::equal(keys[i].C, keys[i].C + 3, keys[i - 1].C))
+    {
+      duplicate[keys[i].Index] = 1;
+      ++result.DroppedDuplicateTriangles;
+    }
+  }
+  uint32_t kept = 0;
+  for (uint32_t t = 0; t < this->T; ++t)
+  {
+    if (!duplicate[t])
+    {
+      this->InputTriOf[kept++] = this->InputTriOf[t];
+    }
+  }
+  this->InputTriOf.resize(kept);
+  this->FillTriangles();
+  // What the first classification left behind.
+  for (Vertex& rec : this->Vertices)
+  {
+    rec.Target = Invalid;
+    rec.Key = std::numeric_limits<float>::infinity();
+    rec.Kind = KindFree;
+    rec.State = 0;
+  }
+  this->Constraints.clear();
+  this->BlockedList.clear();
 }
 
 //------------------------------------------------------------------------------
@@ -531,7 +592,7 @@ bool CollapseEngine::ClassifyClosedFan(uint32_t v, float cosFeature)
 }
 
 //------------------------------------------------------------------------------
-void CollapseEngine::ClassifyVertices()
+bool CollapseEngine::ClassifyVertices()
 {
   if (this->UseHeap)
   {
@@ -670,6 +731,40 @@ void CollapseEngine::ClassifyVertices()
       }
     }
 
+    // Duplicate triangles (the same three points) share an edge and its third
+    // corner. None touches a vertex of the fast path (its walk around the fan
+    // needs distinct neighbours), so every one is met here: the setup starts
+    // again without them (Run). Usually two triangles per edge: one compare.
+    for (const Group& group : groups)
+    {
+      const uint32_t n = group.Next + group.Prev;
+      const uint32_t* m = members.data() + group.First;
+      if (n > linearSearchLimit)
+      {
+        order.resize(n);
+        for (uint32_t k = 0; k < n; ++k)
+        {
+          order[k] = spokes[m[k] ^ 1u].X; // the third corner (the sibling spoke's neighbour)
+        }
+        std::sort(order.begin(), order.end());
+        if (std::adjacent_find(order.begin(), order.end()) != order.end())
+        {
+          return false;
+        }
+        continue;
+      }
+      for (uint32_t a = 1; a < n; ++a)
+      {
+        for (uint32_t b = 0; b < a; ++b)
+        {
+          if (spokes[m[a] ^ 1u].X == spokes[m[b] ^ 1u].X)
+          {
+            return false;
+          }
+        }
+      }
+    }
+
     // Each edge is classified once, from its lower end; the flags it sets
     // are seen by the higher end later.
     bool closed = true;
@@ -776,6 +871,7 @@ void CollapseEngine::ClassifyVertices()
     this->Heap.Heapify();
   }
   this->Normals = BigVector<float>(); // no longer needed
+  return true;
 }
 
 //------------------------------------------------------------------------------
@@ -832,6 +928,29 @@ const std::vector<Candidate>& CollapseEngine::GatherCandidates(uint32_t v)
 }
 
 //------------------------------------------------------------------------------
+bool CollapseEngine::FindLegalAlternative(uint32_t u, uint32_t failedTarget, Candidate& found)
+{
+  // Each check walks both fans: trying every target of a vertex of valence V
+  // costs O(V^2), again after every change around it. Past the budget the
+  // vertex waits (blocked) for its neighbourhood to change.
+  const std::vector<Candidate>& candidates = this->GatherCandidates(u);
+  const uint64_t limit = this->Visited + AlternativeWorkBudget;
+  for (const Candidate& c : candidates)
+  {
+    if (this->Visited > limit)
+    {
+      return false;
+    }
+    if (c.Target != failedTarget && this->CheckCollapse(u, c.Target))
+    {
+      found = c;
+      return true;
+    }
+  }
+  return false;
+}
+
+//------------------------------------------------------------------------------
 void CollapseEngine::SetBest(uint32_t v, const Candidate& best)
 {
   Vertex& rec = this->Vertices[v];
@@ -850,6 +969,11 @@ void CollapseEngine::SetBest(uint32_t v, const Candidate& best)
 //------------------------------------------------------------------------------
 void CollapseEngine::Reevaluate(uint32_t v)
 {
+  if (this->Parked(v))
+  {
+    this->Park(v);
+    return;
+  }
   Candidate best;
   this->BestTarget(v, best);
   this->SetBest(v, best);
@@ -861,6 +985,11 @@ void CollapseEngine::SeedCandidate(uint32_t v)
   // Called by the classification as soon as v's kind, constraint edges and
   // quadric are final (edges are classified from their lower end), while
   // its fan is still in cache.
+  if (this->Parked(v))
+  {
+    this->Park(v);
+    return;
+  }
   Candidate best;
   if (this->BestTarget(v, best, false))
   {
@@ -876,7 +1005,7 @@ void CollapseEngine::SeedCandidate(uint32_t v)
 //------------------------------------------------------------------------------
 bool CollapseEngine::CheckCollapse(uint32_t u, uint32_t w)
 {
-  if (w == Invalid || w == u || this->IsRemoved(w))
+  if (w == Invalid || w == u || this->IsRemoved(w) || this->Parked(u) || this->Parked(w))
   {
     return false;
   }
@@ -890,6 +1019,7 @@ bool CollapseEngine::CheckCollapse(uint32_t u, uint32_t w)
     const Vertex& rw = this->Vertices[w];
     const uint32_t* lu = this->Pool.data() + ru.AdjStart;
     const uint32_t* lw = this->Pool.data() + rw.AdjStart;
+    this->Visited += ru.AdjCount + rw.AdjCount;
     for (uint32_t i = 0; i < ru.AdjCount; ++i)
     {
       Prefetch(&this->Tris[lu[i] >> 2]);
@@ -978,6 +1108,7 @@ bool CollapseEngine::CheckCollapse(uint32_t u, uint32_t w)
     {
       // (u, a, b) becomes (w, a, b): a duplicate if w already has a triangle on a and b.
       const uint32_t* listW = this->Pool.data() + this->Vertices[w].AdjStart;
+      this->Visited += this->Vertices[w].AdjCount;
       for (uint32_t k = 0; k < this->Vertices[w].AdjCount; ++k)
       {
         const Tri& other = this->Tris[listW[k] >> 2];
@@ -1115,7 +1246,8 @@ void CollapseEngine::ApplyCollapse(uint32_t u, uint32_t w)
       rx.Mark = ringBase;
       this->Ring.push_back(x);
       Prefetch(&this->Quadrics[x]); // for the update of its candidates below
-      if (rx.Target == u || (rx.State & BlockedBit) || rx.Kind == KindCurve)
+      if ((rx.Target == u || (rx.State & BlockedBit) || rx.Kind == KindCurve) &&
+        rx.LiveCount <= MaximumFanSize)
       {
         // Probably re-evaluated below: its fan is fetched over this collapse.
         this->Soon.push_back(x);
@@ -1126,6 +1258,7 @@ void CollapseEngine::ApplyCollapse(uint32_t u, uint32_t w)
   this->Merges.clear();
   uint32_t* listU = this->Pool.data() + ru.AdjStart;
   const uint32_t countU = ru.AdjCount;
+  this->Visited += countU + rw.AdjCount;
   uint32_t survivors = 0;
   for (uint32_t i = 0; i < countU; ++i)
   {
@@ -1191,6 +1324,7 @@ void CollapseEngine::ApplyCollapse(uint32_t u, uint32_t w)
   }
   for (uint32_t x : this->Merges)
   {
+    this->Visited += rw.AdjCount;
     const uint32_t* listW = this->Pool.data() + rw.AdjStart;
     for (uint32_t i = 0; i < rw.AdjCount; ++i)
     {
@@ -1263,8 +1397,11 @@ void CollapseEngine::ApplyCollapse(uint32_t u, uint32_t w)
 
   // w: new quadric and new neighbours, so a fresh best target. Blocked
   // vertices around w are retried, since the legality of their collapses
-  // may have changed.
+  // may have changed; around a hub (degenerate input) only when the level
+  // ends (Relax): each would come back to the hub's fan at every collapse
+  // into it, O(V^2) per collapse (most of the work on a crumpled fan).
   this->Retry.clear();
+  const bool retry = rw.LiveCount <= RetryFanSize;
   {
     Candidate best{ std::numeric_limits<double>::infinity(), Invalid };
     const LocalQuadric q(qw, rw.P);
@@ -1282,8 +1419,15 @@ void CollapseEngine::ApplyCollapse(uint32_t u, uint32_t w)
       const uint32_t b = tri.V[Prev3(j)];
       if ((this->Vertices[a].State | this->Vertices[b].State) & BlockedBit)
       {
-        this->Retry.push_back(a);
-        this->Retry.push_back(b);
+        if (retry)
+        {
+          this->Retry.push_back(a);
+          this->Retry.push_back(b);
+        }
+        else
+        {
+          this->RetrySkipped = true;
+        }
       }
       if (kind == KindClosed)
       {
@@ -1306,7 +1450,14 @@ void CollapseEngine::ApplyCollapse(uint32_t u, uint32_t w)
         }
       }
     });
-    this->SetBest(w, best);
+    if (this->Parked(w))
+    {
+      this->Park(w); // its fan grew beyond the bound
+    }
+    else
+    {
+      this->SetBest(w, best);
+    }
   }
 
   // Costs depend only on the source's quadric and the target's position, so
@@ -1388,8 +1539,10 @@ void CollapseEngine::PrefetchCollapse(uint32_t v, int stage)
   const uint32_t* list = this->Pool.data() + rv.AdjStart;
   const uint32_t target = rv.Target;
   const Vertex* rt = target != Invalid ? &this->Vertices[target] : nullptr;
-  // Read only by the stages after the one that fetches the target's record.
+  // Read only by the stages after the one that fetches the target's record
+  // (a parked target's fan is not fetched: the check refuses it unread).
   auto listT = [this, rt]() { return this->Pool.data() + rt->AdjStart; };
+  auto fanT = [rt]() { return rt->LiveCount <= MaximumFanSize ? rt->AdjCount : 0u; };
   auto fetchTriangles = [this](const uint32_t* l, uint32_t n) {
     for (uint32_t i = 0; i < n; ++i)
     {
@@ -1424,13 +1577,13 @@ void CollapseEngine::PrefetchCollapse(uint32_t v, int stage)
       fetchNeighbours(list, rv.AdjCount);
       if (rt)
       {
-        fetchTriangles(listT(), rt->AdjCount);
+        fetchTriangles(listT(), fanT());
       }
       break;
     case 4:
       if (rt)
       {
-        fetchNeighbours(listT(), rt->AdjCount);
+        fetchNeighbours(listT(), fanT());
       }
       break;
     default:
@@ -1520,12 +1673,32 @@ void CollapseEngine::Block(uint32_t v)
 }
 
 //------------------------------------------------------------------------------
+void CollapseEngine::Park(uint32_t v)
+{
+  // Blocked without a walk of its fan: every collapse that shrinks the fan
+  // has v in its ring, which re-evaluates blocked vertices.
+  if (!(this->Vertices[v].State & BlockedBit))
+  {
+    this->Block(v);
+  }
+}
+
+//------------------------------------------------------------------------------
 bool CollapseEngine::Relax()
 {
   if (this->CurrentLevel + 1 >= LevelEnd)
   {
-    return false;
+    if (!this->RetrySkipped)
+    {
+      return false;
+    }
+    // Retries skipped around hubs: once more at this level. Each pass
+    // re-evaluates only the vertices blocked since the last one.
+    this->RetrySkipped = false;
+    this->StartLevel(this->CurrentLevel);
+    return true;
   }
+  this->RetrySkipped = false;
   this->StartLevel(this->CurrentLevel + 1);
   return true;
 }
@@ -1657,6 +1830,7 @@ TOMBuildResult CollapseEngine::Run(const double* points, size_t numberOfPoints,
   auto aborted = [&result]() {
     TOMBuildResult r;
     r.DroppedDegenerateTriangles = result.DroppedDegenerateTriangles;
+    r.DroppedDuplicateTriangles = result.DroppedDuplicateTriangles;
     r.UnusedPoints = result.UnusedPoints;
     r.Aborted = true;
     return r;
@@ -1674,7 +1848,13 @@ TOMBuildResult CollapseEngine::Run(const double* points, size_t numberOfPoints,
   }
   this->BuildAdjacency();
   this->BuildFaceQuadrics();
-  this->ClassifyVertices();
+  if (!this->ClassifyVertices())
+  {
+    this->DropDuplicateTriangles(result);
+    this->BuildAdjacency();
+    this->BuildFaceQuadrics();
+    this->ClassifyVertices(); // no duplicate is left
+  }
 
   this->BeginCollapses();
   if (!this->Progress.Report(0.05) || !schedule())
@@ -1682,6 +1862,7 @@ TOMBuildResult CollapseEngine::Run(const double* points, size_t numberOfPoints,
     return aborted();
   }
   this->BuildOutput(result);
+  result.FanTrianglesVisited = this->Visited;
   if (!this->Progress.Report(1.0))
   {
     return aborted();

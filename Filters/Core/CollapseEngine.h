@@ -36,6 +36,30 @@ constexpr double EdgeLengthWeight = 1e-7;
 // orientation seam); DeadFlag marks a collapsed triangle.
 constexpr uint32_t DeadFlag = 8u;
 
+/*
+ * Work bounds for degenerate input. Checking or applying a collapse walks the
+ * fans of both ends, and a vertex's candidates are re-evaluated (its fan
+ * walked) whenever a neighbour collapses: a vertex of valence V costs O(V)
+ * per collapse around it, and trying its targets one by one O(V^2) per
+ * attempt, again after every change around it (a crumpled fan of 4,000
+ * triangles took 20 s, 60 times the 1,000-triangle one). A vertex with more
+ * than MaximumFanSize live triangles is parked: it neither collapses nor
+ * takes a collapse (CheckCollapse refuses, Reevaluate blocks it without a
+ * walk) until the collapses around it shrink its fan, so no collapse walks a
+ * fan above twice the bound. Real meshes stay far below it (the largest fan
+ * in a collapse of the shared meshes has 81 triangles; the 1,024-triangle
+ * poles of a lat/long sphere shrink before they move): their output is
+ * unchanged.
+ */
+constexpr uint32_t MaximumFanSize = 1024;
+/// Largest fan of a collapse's surviving vertex whose blocked neighbours are
+/// retried at once (larger: when the level ends; real meshes reach 38).
+constexpr uint32_t RetryFanSize = 128;
+/// Fan triangles that the search for a legal alternative target of a vertex
+/// may walk before the vertex is blocked (the shared meshes use up to 8,771,
+/// on fandisk).
+constexpr uint64_t AlternativeWorkBudget = 16 * uint64_t(MaximumFanSize);
+
 // Relaxation levels, tried in order whenever no legal collapse is left.
 enum Level : int
 {
@@ -693,6 +717,12 @@ public:
   void ApplyCollapse(uint32_t u, uint32_t w);
   /// All allowed targets of v, each once, cheapest first (valid until the next call).
   const std::vector<Candidate>& GatherCandidates(uint32_t v);
+  /**
+   * When u's cheapest target (failedTarget) is illegal: the cheapest legal
+   * one into `found`. False when none is, or none within
+   * AlternativeWorkBudget (the schedule then blocks u).
+   */
+  bool FindLegalAlternative(uint32_t u, uint32_t failedTarget, Candidate& found);
   /// Makes t v's target (the key is set apart, see SetKey).
   void SetTarget(uint32_t v, uint32_t t) { this->Vertices[v].Target = t; }
   /// v's key (and its place in the heap, if there is one).
@@ -743,9 +773,11 @@ private:
   // --- setup
   void ReadInput(const double* points, size_t numberOfPoints, const uint32_t* triangles,
     size_t numberOfTriangles, TOMBuildResult& result);
+  void FillTriangles();
+  void DropDuplicateTriangles(TOMBuildResult& result);
   void BuildAdjacency();
   void BuildFaceQuadrics();
-  void ClassifyVertices();
+  bool ClassifyVertices();
   bool ClassifyClosedFan(uint32_t v, float cosFeature);
   bool SharpTurn(uint32_t v, uint32_t a, uint32_t b) const;
   void AddConstraintPlane(uint32_t a, uint32_t b, const Vec3& faceNormal, double weight);
@@ -756,6 +788,9 @@ private:
   void RemoveOrphan(uint32_t x, uint32_t w);
   void PrefetchCollapse(uint32_t v, int stage);
   void Reevaluate(uint32_t v);
+  /// Whether v's fan is beyond MaximumFanSize (then it is parked, see there).
+  bool Parked(uint32_t v) const { return this->Vertices[v].LiveCount > MaximumFanSize; }
+  void Park(uint32_t v);
   void SetBest(uint32_t v, const Candidate& best);
   void StartLevel(int level);
   uint32_t NextStampBase();
@@ -785,6 +820,7 @@ private:
     Vertex& rec = this->Vertices[v];
     uint32_t* list = this->Pool.data() + rec.AdjStart;
     const uint32_t n = rec.AdjCount;
+    this->Visited += n;
     uint32_t kept = 0;
     for (uint32_t i = 0; i < n; ++i)
     {
@@ -910,10 +946,12 @@ private:
   bool SliverCheckEnabled = false;
 
   uint32_t Stamp = 0;
+  uint64_t Visited = 0; // TOMBuildResult::FanTrianglesVisited
   std::vector<Candidate> Scratch;
   std::vector<uint32_t> Ring;  // u's neighbours during a collapse
   std::vector<uint32_t> Soon;  // those of them probably re-evaluated
   std::vector<uint32_t> Retry; // blocked vertices around w during a collapse
+  bool RetrySkipped = false;   // some around a hub (RetryFanSize) since the level started
   std::vector<uint32_t> Orphans;
   std::vector<uint32_t> BlockedList;
   std::vector<uint32_t> Merges; // wing vertices whose merged edge keeps a constraint flag

@@ -324,34 +324,29 @@ uint32_t LevelSchedule::Alternative(uint32_t u, uint32_t failedTarget, uint32_t 
   // level's cap; otherwise re-queues u, or defers it when that target is
   // touched, or blocks u when nothing is legal.
   CollapseEngine& e = this->Engine;
-  const std::vector<Candidate>& candidates = e.GatherCandidates(u);
-  for (size_t i = 0; i < candidates.size(); ++i)
+  Candidate c{};
+  if (!e.FindLegalAlternative(u, failedTarget, c))
   {
-    const Candidate c = candidates[i];
-    if (c.Target == failedTarget || !e.CheckCollapse(u, c.Target))
-    {
-      continue;
-    }
-    e.SetTarget(u, c.Target);
-    key = OrderedBits(CollapseEngine::KeyOf(c.Cost));
-    if (!this->IsTouched(c.Target) && key <= this->NextKey() && key <= cap)
-    {
-      return c.Target;
-    }
-    e.SetKey(u, c.Cost);
-    const Entry entry{ key, u, c.Target, 0 };
-    if (this->IsTouched(c.Target))
-    {
-      this->Deferred.push_back(entry);
-    }
-    else
-    {
-      this->Requeued.push_back(entry);
-      std::push_heap(this->Requeued.begin(), this->Requeued.end(), LaterEntry);
-    }
+    e.Block(u); // a collapse around u re-evaluates it (and touches it)
     return Invalid;
   }
-  e.Block(u); // a collapse around u re-evaluates it (and touches it)
+  e.SetTarget(u, c.Target);
+  key = OrderedBits(CollapseEngine::KeyOf(c.Cost));
+  if (!this->IsTouched(c.Target) && key <= this->NextKey() && key <= cap)
+  {
+    return c.Target;
+  }
+  e.SetKey(u, c.Cost);
+  const Entry entry{ key, u, c.Target, 0 };
+  if (this->IsTouched(c.Target))
+  {
+    this->Deferred.push_back(entry);
+  }
+  else
+  {
+    this->Requeued.push_back(entry);
+    std::push_heap(this->Requeued.begin(), this->Requeued.end(), LaterEntry);
+  }
   return Invalid;
 }
 

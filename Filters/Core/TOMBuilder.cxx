@@ -43,24 +43,19 @@ bool GreedySchedule::TryAlternatives(uint32_t u, uint32_t failedTarget)
   // The cheapest target of u is illegal: take the cheapest legal one, which
   // may no longer be the global minimum, hence the re-queue.
   CollapseEngine& e = this->Engine;
-  const std::vector<Candidate>& candidates = e.GatherCandidates(u);
-  for (size_t i = 0; i < candidates.size(); ++i)
+  Candidate c{};
+  if (!e.FindLegalAlternative(u, failedTarget, c))
   {
-    const Candidate c = candidates[i];
-    if (c.Target == failedTarget || !e.CheckCollapse(u, c.Target))
-    {
-      continue;
-    }
-    e.SetTarget(u, c.Target);
-    if (CollapseEngine::KeyOf(c.Cost) <= e.HeapSecondKey())
-    {
-      return true; // still the cheapest collapse overall: do it now
-    }
-    e.SetKey(u, c.Cost);
+    // Nothing legal at this level: wait for the neighbourhood to change.
+    e.Block(u);
     return false;
   }
-  // Nothing legal at this level: wait for the neighbourhood to change.
-  e.Block(u);
+  e.SetTarget(u, c.Target);
+  if (CollapseEngine::KeyOf(c.Cost) <= e.HeapSecondKey())
+  {
+    return true; // still the cheapest collapse overall: do it now
+  }
+  e.SetKey(u, c.Cost);
   return false;
 }
 

@@ -55,8 +55,18 @@ struct TOMBuildResult
   std::vector<uint32_t> TrianglesAtVertexCount;
   /// Input triangles dropped because two of their corners were the same point.
   size_t DroppedDegenerateTriangles = 0;
+  /// Input triangles dropped because an earlier one has the same three points
+  /// (in any order): what appending coincident copies gives.
+  size_t DroppedDuplicateTriangles = 0;
   /// Input points used by no triangle (left out of the TOM).
   size_t UnusedPoints = 0;
+  /**
+   * Work of the collapses: adjacency entries (fan triangles) walked by the
+   * checks, the collapses and the re-evaluations of candidates: 30 to 45 per
+   * input triangle on the shared meshes; the fan bound
+   * (collapse::MaximumFanSize) keeps it linear on degenerate input.
+   */
+  uint64_t FanTrianglesVisited = 0;
   bool Aborted = false;
 };
 
@@ -68,7 +78,9 @@ struct TOMBuildResult
  * Boundaries and feature edges carry constraint quadrics and may only slide
  * along themselves; once no constrained collapse is left they are released so
  * that the build always reaches the coarsest mesh reachable (a few vertices per
- * connected component), keeping the order total.
+ * connected component), keeping the order total. Degenerate input only: a
+ * vertex whose fan keeps more than collapse::MaximumFanSize triangles stays
+ * (the bound that keeps the build linear).
  *
  * The hot loop is hand written over flat arrays (no half-edge library): the
  * throughput goal is over 1 M input triangles per second on one core.
@@ -81,7 +93,8 @@ public:
   /**
    * points: 3 coordinates per point; triangles: 3 point ids per triangle.
    * Throws std::invalid_argument on out-of-range ids or non-finite coordinates
-   * of used points. Triangles with repeated ids are dropped and counted.
+   * of used points. Triangles with repeated ids, and repeats of an earlier triangle's three
+   * points, are dropped and counted.
    */
   TOMBuildResult Build(const double* points, size_t numberOfPoints, const uint32_t* triangles,
     size_t numberOfTriangles) const;

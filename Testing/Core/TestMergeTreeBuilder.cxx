@@ -129,7 +129,9 @@ void ExpectValidMergeTree(const TriangleMesh& mesh, const MergeTreeBuildResult& 
   ASSERT_FALSE(r.TOM.Aborted);
   EXPECT_EQ(TOMValidator::Check(tom), "");
   const uint32_t n = tom.GetNumberOfVertices();
-  EXPECT_EQ(tom.GetNumberOfTriangles() + r.TOM.DroppedDegenerateTriangles, mesh.NumberOfTriangles());
+  EXPECT_EQ(tom.GetNumberOfTriangles() + r.TOM.DroppedDegenerateTriangles +
+      r.TOM.DroppedDuplicateTriangles,
+    mesh.NumberOfTriangles());
   ASSERT_EQ(r.TOM.VertexOrder.size(), n);
   ASSERT_EQ(r.TOM.VertexCountError.size(), n + size_t(1));
   ASSERT_EQ(r.TOM.TrianglesAtVertexCount.size(), n + size_t(1));
@@ -372,6 +374,57 @@ TEST(MergeTreeBuilder, BadInputThrowsLikeTOMBuilder)
   TriangleMesh bad = mesh;
   bad.Points[3 * bad.Triangles[4] + 1] = std::numeric_limits<double>::quiet_NaN();
   EXPECT_THROW(Build(bad), std::invalid_argument);
+}
+
+//------------------------------------------------------------------------------
+// Degenerate input (the engine is TOMBuilder's: see its tests too)
+
+TEST(MergeTreeBuilder, CoincidentCopiesGiveTheTreeOfOneCopy)
+{
+  const TriangleMesh sphere = timecritical::testing::MakeUVSphere(5, 8);
+  TriangleMesh copies;
+  copies.Points = sphere.Points;
+  for (int c = 0; c < 1000; ++c)
+  {
+    copies.Triangles.insert(
+      copies.Triangles.end(), sphere.Triangles.begin(), sphere.Triangles.end());
+  }
+  const MergeTreeBuildResult a = Build(sphere);
+  const MergeTreeBuildResult b = Build(copies);
+  ExpectValidMergeTree(copies, b);
+  EXPECT_EQ(b.TOM.DroppedDuplicateTriangles, 999u * 64u);
+  EXPECT_EQ(b.TOM.Mesh.Triangles, a.TOM.Mesh.Triangles);
+  EXPECT_EQ(b.TOM.TriangleOrder, a.TOM.TriangleOrder);
+  EXPECT_EQ(b.TOM.VertexOrder, a.TOM.VertexOrder);
+  EXPECT_EQ(b.Tree.Level, a.Tree.Level);
+  EXPECT_EQ(b.Tree.Error, a.Tree.Error);
+  EXPECT_EQ(b.Tree.Radius, a.Tree.Radius);
+  EXPECT_EQ(b.Tree.Dependencies, a.Tree.Dependencies);
+  EXPECT_EQ(b.TOM.FanTrianglesVisited, a.TOM.FanTrianglesVisited);
+}
+
+TEST(MergeTreeBuilder, WorkStaysLinearOnACrumpledFan)
+{
+  // 16,000 triangles around one vertex, the others scattered over a sphere:
+  // most collapses of the hub are illegal (see TOMBuilder's test).
+  TriangleMesh fan;
+  fan.Points = { 0, 0, 0 };
+  uint64_t state = 12345;
+  auto random = [&state]() {
+    state = state * 6364136223846793005ull + 1442695040888963407ull;
+    return double(state >> 11) / double(uint64_t(1) << 53);
+  };
+  const uint32_t n = 16000;
+  for (uint32_t i = 0; i < n; ++i)
+  {
+    const double z = 2 * random() - 1, a = 6.283185307179586 * random();
+    const double r = std::sqrt(1 - z * z);
+    fan.Points.insert(fan.Points.end(), { r * std::cos(a), r * std::sin(a), z });
+    fan.Triangles.insert(fan.Triangles.end(), { 0, 1 + i, 1 + (i + 1) % n });
+  }
+  const MergeTreeBuildResult r = Build(fan);
+  ExpectValidMergeTree(fan, r);
+  EXPECT_LT(r.TOM.FanTrianglesVisited, 4000u * fan.NumberOfTriangles());
 }
 
 TEST(MergeTreeBuilder, EmptyAndTinyInputs)
