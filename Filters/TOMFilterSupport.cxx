@@ -42,8 +42,9 @@ SurfaceStatus PrepareSurface(vtkAlgorithm* filter, vtkPolyData* input, PreparedS
   }
   const vtkIdType numberOfInputPoints = input->GetNumberOfPoints();
   const vtkIdType firstPoly = input->GetNumberOfVerts() + input->GetNumberOfLines();
-  // VTK's cleaning filters would read out of bounds on bad point ids.
-  const std::string problem = vtkPolyDataValidator::Check(input);
+  // VTK's cleaning filters would read out of bounds on bad point ids; the
+  // cores would refuse coordinates beyond their limit.
+  const std::string problem = vtkPolyDataValidator::CheckBuildInput(input);
   if (!problem.empty())
   {
     vtkErrorWithObjectMacro(filter, "Bad input: " << problem << ".");

@@ -48,8 +48,9 @@ enum class SurfaceStatus
 
 /**
  * Checks and prepares `input` for `filter`: rejects out-of-range point ids,
- * non-finite coordinates and inputs without surface cells; merges coincident
- * points; triangulates polygons and strips; drops
+ * coordinates that are not finite or beyond the cores' limit
+ * (vtkPolyDataValidator::CheckBuildInput) and inputs without surface cells;
+ * merges coincident points; triangulates polygons and strips; drops
  * vertices, lines and degenerate cells with a warning on `filter`. Duplicate
  * triangles (same three points, in any order: what appending coincident
  * copies gives) are the cores' to drop (TOMBuildResult), WriteOrderedSurface's

@@ -10,7 +10,12 @@
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 
+#include "TOMBuilder.h" // for MaximumCoordinateMagnitude
+
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <limits>
 #include <sstream>
 
 vtkStandardNewMacro(vtkPolyDataValidator);
@@ -74,6 +79,11 @@ std::string vtkPolyDataValidator::CheckPointIds(vtkPolyData* data)
 
 vtkIdType vtkPolyDataValidator::FirstNonFinitePoint(vtkPoints* points)
 {
+  return FirstPointBeyond(points, std::numeric_limits<double>::max());
+}
+
+vtkIdType vtkPolyDataValidator::FirstPointBeyond(vtkPoints* points, double limit)
+{
   if (!points)
   {
     return -1;
@@ -81,10 +91,10 @@ vtkIdType vtkPolyDataValidator::FirstNonFinitePoint(vtkPoints* points)
   vtkDataArray* data = points->GetData();
   const vtkIdType n = points->GetNumberOfPoints();
   // Raw pointers for the usual float and double points: no virtual call per value.
-  auto scan = [n](const auto* xyz) -> vtkIdType {
+  auto scan = [n, limit](const auto* xyz) -> vtkIdType {
     for (vtkIdType i = 0; i < 3 * n; ++i)
     {
-      if (!std::isfinite(xyz[i]))
+      if (!(std::abs(static_cast<double>(xyz[i])) <= limit))
       {
         return i / 3;
       }
@@ -103,7 +113,7 @@ vtkIdType vtkPolyDataValidator::FirstNonFinitePoint(vtkPoints* points)
   {
     for (int c = 0; c < 3; ++c)
     {
-      if (!std::isfinite(data->GetComponent(i, c)))
+      if (!(std::abs(data->GetComponent(i, c)) <= limit))
       {
         return i;
       }
@@ -132,4 +142,33 @@ std::string vtkPolyDataValidator::Check(vtkPolyData* data)
   }
   std::string problem = CheckPointIds(data);
   return problem.empty() ? CheckCoordinates(data->GetPoints()) : problem;
+}
+
+std::string vtkPolyDataValidator::CheckBuildInput(vtkPolyData* data)
+{
+  std::string problem = CheckPointIds(data);
+  if (!problem.empty() || !data)
+  {
+    return problem;
+  }
+  // One scan for both: the first point beyond the limit, NaN and infinite included.
+  const double limit = timecritical::MaximumCoordinateMagnitude;
+  const vtkIdType bad = FirstPointBeyond(data->GetPoints(), limit);
+  if (bad < 0)
+  {
+    return std::string();
+  }
+  double p[3];
+  data->GetPoints()->GetPoint(bad, p);
+  if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
+  {
+    return CheckCoordinates(data->GetPoints());
+  }
+  const double magnitude = std::max({ std::abs(p[0]), std::abs(p[1]), std::abs(p[2]) });
+  char message[200];
+  std::snprintf(message, sizeof(message),
+    "point %lld has a coordinate of magnitude %.3g, beyond the supported %g (errors and radii "
+    "are stored as float); scale the data",
+    static_cast<long long>(bad), magnitude, limit);
+  return message;
 }

@@ -40,6 +40,16 @@ public:
    */
   static std::string Check(vtkPolyData* data);
 
+  /**
+   * Check() for the inputs of the builder filters (vtkTOMBuilder,
+   * vtkMergeTreeBuilder): also rejects coordinates of magnitude above
+   * timecritical::MaximumCoordinateMagnitude, the cores' own limit (their
+   * errors and radii are stored as float): "point 5 has a coordinate of
+   * magnitude 2.2e+38, beyond the supported 1e+28 (errors and radii are
+   * stored as float); scale the data".
+   */
+  static std::string CheckBuildInput(vtkPolyData* data);
+
   /// Only the connectivity part of Check().
   static std::string CheckPointIds(vtkPolyData* data);
 
@@ -48,6 +58,10 @@ public:
 
   /// Id of the first point with a NaN or infinite coordinate, or -1 (also for null points).
   static vtkIdType FirstNonFinitePoint(vtkPoints* points);
+
+  /// Id of the first point with a coordinate that is NaN or of magnitude above
+  /// `limit` (infinite included), or -1 (also for null points).
+  static vtkIdType FirstPointBeyond(vtkPoints* points, double limit);
 
 protected:
   vtkPolyDataValidator() = default;

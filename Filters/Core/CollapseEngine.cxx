@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <limits>
 #include <new>
@@ -209,10 +210,19 @@ void CollapseEngine::ReadInput(const double* points, size_t numberOfPoints, cons
     const double* p = points + 3 * i;
     for (int k = 0; k < 3; ++k)
     {
-      if (!std::isfinite(p[k]))
+      if (!(std::abs(p[k]) <= MaximumCoordinateMagnitude))
       {
-        throw std::invalid_argument("TOMBuilder: point " + std::to_string(i) +
-          " (used by a triangle) has a non-finite coordinate");
+        if (!std::isfinite(p[k]))
+        {
+          throw std::invalid_argument("TOMBuilder: point " + std::to_string(i) +
+            " (used by a triangle) has a non-finite coordinate");
+        }
+        char message[200];
+        std::snprintf(message, sizeof(message),
+          "TOMBuilder: point %zu has a coordinate of magnitude %.3g, beyond the supported %g "
+          "(errors and radii are stored as float); scale the data",
+          i, std::abs(p[k]), MaximumCoordinateMagnitude);
+        throw std::invalid_argument(message);
       }
       lo[k] = std::min(lo[k], p[k]);
       hi[k] = std::max(hi[k], p[k]);
@@ -1379,7 +1389,10 @@ void CollapseEngine::ApplyCollapse(uint32_t u, uint32_t w)
     }
     const double face = std::max(total - constraint, 0.0);
     const double e2 = std::max(qw.FaceWeight > 0.0 ? face / qw.FaceWeight : 0.0, e2c);
-    this->RunningError = std::max(this->RunningError, std::sqrt(e2) * this->Scale);
+    // Every plane and vertex lies in the unit box, so no distance exceeds its
+    // diagonal: more is rounding (a tiny face weight), which could overflow.
+    this->RunningError =
+      std::max(this->RunningError, std::sqrt(std::min(e2, 3.0)) * this->Scale);
     this->StepError.push_back(static_cast<float>(this->RunningError));
   }
 

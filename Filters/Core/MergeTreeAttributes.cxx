@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <limits>
 #include <stdexcept>
@@ -256,6 +257,13 @@ float RoundUp(double x)
     std::memcpy(&f, &bits, sizeof(f));
   }
   return f;
+}
+
+/// The shading error as a length (see MergeTreeErrorOptions), at most
+/// FLT_MAX: any weight is allowed, and a float error must stay finite.
+double ShadingLength(double weight, double radius, double deviation)
+{
+  return std::min(weight * radius * deviation, double(std::numeric_limits<float>::max()));
 }
 
 /// Replay state of one vertex, one cache line: everything an event reads of
@@ -735,7 +743,7 @@ MergeTree Replay(const TOMMesh& tom, const double* points, const uint32_t* point
       // a tangent plane whose rim moves by about radius * angle, so its
       // projection in pixels grows with the node's projected size, as the
       // node's share of a squared image error does.
-      shadingError = shadingWeight * radius * deviation;
+      shadingError = ShadingLength(shadingWeight, radius, deviation);
     }
     tree.Radius[v] = RoundUp(radius);
     StoreCone(tree, v, cu);
@@ -773,7 +781,7 @@ MergeTree Replay(const TOMMesh& tom, const double* points, const uint32_t* point
   for (uint32_t w = 0; w < B; ++w)
   {
     tree.Error[w] = std::max(RoundUp(std::max(node[w].Error,
-                               shadingWeight * node[w].Radius * shade[w].Deviation)),
+                               ShadingLength(shadingWeight, node[w].Radius, shade[w].Deviation))),
       node[w].ChildError);
     tree.Radius[w] = RoundUp(node[w].Radius);
     StoreCone(tree, w, cone[w]);
@@ -833,10 +841,19 @@ MergeTree ComputeMergeTree(const TOMMesh& tom, const double* points, const uint1
   }
   for (size_t i = 0; i < 3 * static_cast<size_t>(N); ++i)
   {
-    if (!std::isfinite(points[i]))
+    if (!(std::abs(points[i]) <= MaximumCoordinateMagnitude))
     {
-      throw std::invalid_argument(
-        "ComputeMergeTree: non-finite coordinate of point " + std::to_string(i / 3));
+      if (!std::isfinite(points[i]))
+      {
+        throw std::invalid_argument(
+          "ComputeMergeTree: non-finite coordinate of point " + std::to_string(i / 3));
+      }
+      char message[200];
+      std::snprintf(message, sizeof(message),
+        "ComputeMergeTree: point %zu has a coordinate of magnitude %.3g, beyond the supported "
+        "%g (errors and radii are stored as float); scale the data",
+        i / 3, std::abs(points[i]), MaximumCoordinateMagnitude);
+      throw std::invalid_argument(message);
     }
   }
   return Replay(tom, points, nullptr, levels, options, nullptr);

@@ -46,7 +46,9 @@ struct MergeTreeErrorOptions
  * MergeTreeErrorOptions; monotone), radii and normal cones.
  * points: 3 coordinates per TOM vertex, in TOM order. levels: one per TOM
  * vertex (level of the collapse that removed it), or null to derive levels
- * from the dependency depth. Throws std::invalid_argument on an invalid TOM.
+ * from the dependency depth. Throws std::invalid_argument on an invalid TOM,
+ * or on coordinates that are not finite or exceed MaximumCoordinateMagnitude
+ * (TOMBuilder.h).
  * Linear time, one pass over the collapses; bound by cache misses on the
  * scattered TOM order, hidden by prefetching the next events' data (igea
  * after one Loop subdivision, one core, validation included: ~0.38 s per

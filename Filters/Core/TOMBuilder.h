@@ -12,6 +12,17 @@
 
 namespace timecritical
 {
+/**
+ * Largest coordinate magnitude the builders accept (TOMBuilder,
+ * MergeTreeBuilder, ComputeMergeTree, and the VTK filters through
+ * vtkPolyDataValidator), so that every error and radius they store as float
+ * stays finite. A merge-tree radius is at most the sum of the edge lengths
+ * along one substitution chain: fewer than 2^32 edges, each at most the box
+ * diagonal 2 sqrt(3) 1e28, so below 1.5e38 < FLT_MAX = 3.4e38; node errors
+ * are capped by radii, and TOM errors by the diagonal.
+ */
+constexpr double MaximumCoordinateMagnitude = 1e28;
+
 /// Settings of TOMBuilder.
 struct TOMBuildOptions
 {
@@ -92,8 +103,9 @@ public:
 
   /**
    * points: 3 coordinates per point; triangles: 3 point ids per triangle.
-   * Throws std::invalid_argument on out-of-range ids or non-finite coordinates
-   * of used points. Triangles with repeated ids, and repeats of an earlier triangle's three
+   * Throws std::invalid_argument on out-of-range ids, or on coordinates of
+   * used points that are not finite or exceed MaximumCoordinateMagnitude.
+   * Triangles with repeated ids, and repeats of an earlier triangle's three
    * points, are dropped and counted.
    */
   TOMBuildResult Build(const double* points, size_t numberOfPoints, const uint32_t* triangles,

@@ -11,8 +11,10 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <random>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 using namespace timecritical;
@@ -188,6 +190,34 @@ TEST(MergeTreeAttributes, InvalidInputThrows)
   EXPECT_THROW(ComputeMergeTree(tom, nullptr, nullptr), std::invalid_argument);
   points[2] = std::nan("");
   EXPECT_THROW(ComputeMergeTree(tom, points.data(), nullptr), std::invalid_argument);
+  points[2] = 0.0;
+  points[13] = 2.2e38; // finite, but radii would overflow float
+  try
+  {
+    ComputeMergeTree(tom, points.data(), nullptr);
+    FAIL() << "no exception";
+  }
+  catch (const std::invalid_argument& e)
+  {
+    EXPECT_NE(std::string(e.what()).find("point 4 has a coordinate of magnitude 2.2e+38"),
+      std::string::npos)
+      << e.what();
+  }
+}
+
+TEST(MergeTreeAttributes, HugeShadingWeightKeepsErrorsFinite)
+{
+  // Any finite weight is allowed; the float errors saturate instead of
+  // overflowing.
+  const Built b = Build(tct::MakeTorus(30, 12, 5, 0.3));
+  MergeTreeErrorOptions options;
+  options.ShadingWeight = 1e300;
+  const MergeTree tree = ComputeMergeTree(b.Mesh, b.Points.data(), nullptr, options);
+  for (float e : tree.Error)
+  {
+    ASSERT_TRUE(std::isfinite(e));
+  }
+  EXPECT_EQ(tree.Error[0], std::numeric_limits<float>::max());
 }
 
 //------------------------------------------------------------------------------

@@ -374,6 +374,8 @@ TEST(MergeTreeBuilder, BadInputThrowsLikeTOMBuilder)
   TriangleMesh bad = mesh;
   bad.Points[3 * bad.Triangles[4] + 1] = std::numeric_limits<double>::quiet_NaN();
   EXPECT_THROW(Build(bad), std::invalid_argument);
+  bad.Points[3 * bad.Triangles[4] + 1] = 1.7e38; // finite, but radii would overflow float
+  EXPECT_THROW(Build(bad), std::invalid_argument);
 }
 
 //------------------------------------------------------------------------------
@@ -425,6 +427,27 @@ TEST(MergeTreeBuilder, WorkStaysLinearOnACrumpledFan)
   const MergeTreeBuildResult r = Build(fan);
   ExpectValidMergeTree(fan, r);
   EXPECT_LT(r.TOM.FanTrianglesVisited, 4000u * fan.NumberOfTriangles());
+}
+
+TEST(MergeTreeBuilder, CoordinatesAtTheLimitGiveFiniteRadiiAndErrors)
+{
+  TriangleMesh mesh = timecritical::testing::MakeTorus(40, 16, 3, 0.2);
+  double largest = 0.0;
+  for (double x : mesh.Points)
+  {
+    largest = std::max(largest, std::abs(x));
+  }
+  for (double& x : mesh.Points)
+  {
+    x *= 0.999 * MaximumCoordinateMagnitude / largest;
+  }
+  const MergeTreeBuildResult r = Build(mesh);
+  ExpectValidMergeTree(mesh, r);
+  for (uint32_t v = 0; v < r.TOM.Mesh.GetNumberOfVertices(); ++v)
+  {
+    ASSERT_TRUE(std::isfinite(r.Tree.Radius[v]) && std::isfinite(r.Tree.Error[v])) << v;
+  }
+  EXPECT_GT(r.Tree.Radius[0], 1e27f);
 }
 
 TEST(MergeTreeBuilder, EmptyAndTinyInputs)

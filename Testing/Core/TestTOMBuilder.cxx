@@ -980,6 +980,38 @@ TEST(TOMBuilder, WorkStaysLinearOnHugeFans)
   }
 }
 
+TEST(TOMBuilder, CoordinatesBeyondTheLimitThrow)
+{
+  // Errors and merge-tree radii are stored as float: far beyond
+  // MaximumCoordinateMagnitude they would overflow to infinity.
+  TriangleMesh mesh = timecritical::testing::MakeGrid(2, 2);
+  mesh.Points.insert(mesh.Points.end(), { 3e38, 0.0, 0.0 }); // unused: anything goes
+  ExpectValidResult(mesh, Build(mesh));
+  mesh.Points[3 * 4 + 2] = -2.2e38;
+  try
+  {
+    Build(mesh);
+    FAIL() << "no exception";
+  }
+  catch (const std::invalid_argument& e)
+  {
+    EXPECT_NE(std::string(e.what()).find("point 4 has a coordinate of magnitude 2.2e+38, beyond "
+                                         "the supported 1e+28"),
+      std::string::npos)
+      << e.what();
+  }
+
+  // At the limit: every error finite.
+  TriangleMesh huge = BumpyGrid(12);
+  for (double& x : huge.Points)
+  {
+    x *= MaximumCoordinateMagnitude; // [0, 1]^2 and a bump of 0.15
+  }
+  const TOMBuildResult r = Build(huge);
+  ExpectValidResult(huge, r); // finite errors among the rest
+  EXPECT_GT(r.VertexCountError[r.Mesh.BaseVertexCount], 1e24f);
+}
+
 //------------------------------------------------------------------------------
 // Progress, determinism, allocations
 

@@ -144,6 +144,35 @@ TEST(vtkMergeTreeBuilder, NaNCoordinateIsAnError)
   EXPECT_EQ(out->GetNumberOfPoints(), 0);
 }
 
+TEST(vtkMergeTreeBuilder, HugeCoordinateIsAnError)
+{
+  // Beyond the limit the tree's float radii would overflow and its own
+  // reader reject it; up to the limit it builds and reads back.
+  auto input = MakeSphere(10);
+  input->GetPoints()->SetPoint(5, 0, 3e38, 0);
+  vtkNew<vtkMergeTreeBuilder> builder;
+  MessageLog log(builder);
+  auto out = BuildTree(input, builder);
+  EXPECT_TRUE(
+    log.ErrorContains("point 5 has a coordinate of magnitude 3e+38, beyond the supported"))
+    << log.AllErrors();
+  EXPECT_EQ(out->GetNumberOfPoints(), 0);
+
+  auto large = MakeSphere(10);
+  for (vtkIdType i = 0; i < large->GetNumberOfPoints(); ++i)
+  {
+    double p[3];
+    large->GetPoints()->GetPoint(i, p);
+    large->GetPoints()->SetPoint(i, 1.8e28 * p[0], 1.8e28 * p[1], 1.8e28 * p[2]); // radius 0.5
+  }
+  vtkNew<vtkMergeTreeBuilder> largeBuilder;
+  MessageLog largeLog(largeBuilder);
+  auto tree = BuildTree(large, largeBuilder);
+  EXPECT_TRUE(largeLog.Errors.empty()) << largeLog.AllErrors();
+  vtkNew<vtkMergeTreeFieldData> reader;
+  EXPECT_TRUE(reader->Read(tree)) << reader->GetErrorMessage();
+}
+
 TEST(vtkMergeTreeBuilder, OutOfRangePointIdIsAnError)
 {
   // Both builders share the input checks: a polygon naming a point that does

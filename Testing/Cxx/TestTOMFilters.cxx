@@ -150,6 +150,22 @@ TEST(vtkTOMBuilder, NaNCoordinateIsAnError)
   EXPECT_EQ(out->GetNumberOfPoints(), 0);
 }
 
+TEST(vtkTOMBuilder, HugeCoordinateIsAnError)
+{
+  // Finite, but beyond what the cores' float errors and radii hold: the
+  // cores' own limit, reported at the filter's entry.
+  auto input = MakeSphere(10);
+  input->GetPoints()->SetPoint(5, -2.2e38, 0, 0);
+  vtkNew<vtkTOMBuilder> builder;
+  MessageLog log(builder);
+  auto out = Build(input, builder);
+  EXPECT_TRUE(log.ErrorContains(
+    "point 5 has a coordinate of magnitude 2.2e+38, beyond the supported 1e+28"))
+    << log.AllErrors();
+  EXPECT_EQ(out->GetNumberOfPoints(), 0);
+  EXPECT_EQ(out->GetNumberOfCells(), 0);
+}
+
 TEST(vtkTOMBuilder, QuadsAndStripsAreTriangulated)
 {
   auto quads = Build(tt::PlaneQuads());
