@@ -13,6 +13,11 @@
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
+// AVX2 lanes, chosen at run time, where the compiler can target them per function.
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(TIMECRITICAL_NO_AVX2)
+#define TIMECRITICAL_AVX2 1
+#include <immintrin.h>
+#endif
 
 // The lane helpers below run per pair of objects inside O(n) loops: a call
 // there costs more than the work.
@@ -177,7 +182,6 @@ struct Lane1
   static V KeepNot(M m, V a) { return m ? 0.0 : a; }
   static double Sum(V a) { return a; }
   static unsigned Bits(M m) { return m ? 1u : 0u; }
-  static V LoadKeys(const std::int32_t* p) { return static_cast<double>(*p); }
   template <class F>
   static V Map(V a, F f)
   {
@@ -209,10 +213,6 @@ struct Lane2
   static V KeepNot(M m, V a) { return _mm_andnot_pd(m, a); }
   static double Sum(V a) { return _mm_cvtsd_f64(a) + _mm_cvtsd_f64(_mm_unpackhi_pd(a, a)); }
   static unsigned Bits(M m) { return static_cast<unsigned>(_mm_movemask_pd(m)); }
-  static V LoadKeys(const std::int32_t* p)
-  {
-    return _mm_cvtepi32_pd(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(p)));
-  }
   template <class F>
   static V Map(V a, F f)
   {
@@ -221,61 +221,16 @@ struct Lane2
     return _mm_set_pd(f(x[1]), f(x[0]));
   }
 };
-using LaneN = Lane2;
-#else
-using LaneN = Lane1;
 #endif
 
-/// Set lanes of a mask of at most two.
-std::size_t CountBits(unsigned bits)
+/// Set lanes of a mask of at most four.
+TIMECRITICAL_LANE_INLINE std::size_t CountBits(unsigned bits)
 {
-  return (bits & 1u) + (bits >> 1);
+  return (bits & 1u) + ((bits >> 1) & 1u) + ((bits >> 2) & 1u) + ((bits >> 3) & 1u);
 }
 
-template <class L, int Kind>
-TIMECRITICAL_LANE_INLINE typename L::V PowerLanes(typename L::V x, double gamma)
-{
-  if constexpr (Kind == 1)
-  {
-    return L::Sqrt(x);
-  }
-  else if constexpr (Kind == 3)
-  {
-    return x * x;
-  }
-  else
-  {
-    return L::Map(x, [gamma](double y) { return PowerOf<Kind>(y, gamma); });
-  }
-}
-
-template <class L, int Kind>
-TIMECRITICAL_LANE_INLINE typename L::V TermLanes(typename L::V c, double alpha, typename L::V r)
-{
-  if constexpr (Kind == 1)
-  {
-    return c / r;
-  }
-  else if constexpr (Kind == 2)
-  {
-    return L::Set(0.5) * c / (r * r);
-  }
-  else if constexpr (Kind == 3)
-  {
-    return L::Set(-2.0) * c * L::Sqrt(r);
-  }
-  else
-  {
-    alignas(16) double cs[L::Width], rs[L::Width], out[L::Width];
-    L::Store(cs, c);
-    L::Store(rs, r);
-    for (std::size_t k = 0; k < L::Width; ++k)
-    {
-      out[k] = ResolutionProblem::Term(cs[k], alpha, rs[k]);
-    }
-    return L::Load(out);
-  }
-}
+/// Widest lane type: the reduction's bucket table has one sub-table per lane.
+constexpr std::size_t MaxLanes = 4;
 
 /// Inputs and outputs of the preparation pass (see ActiveSetOptimizer::Prepare).
 struct PrepareData
@@ -285,63 +240,6 @@ struct PrepareData
   double Gamma, Alpha;
   bool Warm;
 };
-
-template <class L>
-struct PrepareSums
-{
-  using V = typename L::V;
-  V CostLow = L::Set(0.0), CostHigh = L::Set(0.0), CostTop = L::Set(0.0), Cost = L::Set(0.0);
-  V Objective = L::Set(0.0);
-  V FixedCost = L::Set(0.0), FreeWeight = L::Set(0.0), Weight = L::Set(0.0);
-  std::size_t Invalid = 0, Zero = 0;
-};
-
-template <class L, int Kind>
-void PrepareLanes(const PrepareData& d, std::size_t begin, std::size_t end, PrepareSums<L>& s)
-{
-  using V = typename L::V;
-  using M = typename L::M;
-  const V zero = L::Set(0.0), one = L::Set(1.0), largest = L::Set(DBL_MAX);
-  const V tiny = L::Set(ResolutionProblem::TinyResolution);
-  for (std::size_t i = begin; i < end; i += L::Width)
-  {
-    const V rawLo = d.MinResolution ? L::Load(d.MinResolution + i) : zero;
-    const M finiteLo = L::And(L::Le(rawLo, largest), L::Le(L::Set(-DBL_MAX), rawLo));
-    const V lo = L::Select(finiteLo, L::Min(L::Max(rawLo, tiny), one), tiny);
-    const V rawC = L::Load(d.Weight + i);
-    const V c = L::Keep(L::And(L::Lt(zero, rawC), L::Le(rawC, largest)), rawC);
-    const V rawT = L::Load(d.MaxTime + i);
-    const M valid = L::And(L::Lt(zero, rawT), L::Le(rawT, largest));
-    const M nonNegative = L::And(L::Le(zero, rawT), L::Le(rawT, largest));
-    s.Invalid += L::Width - CountBits(L::Bits(nonNegative));
-    s.Zero += CountBits(L::Bits(L::Eq(rawT, zero)));
-    const V t = L::Keep(valid, rawT);
-    const V g = L::Min(PowerLanes<L, Kind>(L::Keep(valid, c / L::Select(valid, rawT, one)), d.Gamma), largest);
-    L::Store(d.Lo + i, lo);
-    L::Store(d.C + i, c);
-    L::Store(d.T + i, t);
-    L::Store(d.G + i, g);
-    V x = lo;
-    if (d.Warm)
-    {
-      const V previous = L::Load(d.R + i);
-      const M usable =
-        L::And(L::Lt(zero, g), L::And(L::Lt(zero, previous), L::Le(previous, largest)));
-      x = L::Select(usable, L::Min(L::Max(previous, lo), one), lo);
-    }
-    L::Store(d.R + i, x);
-    s.Objective = s.Objective + TermLanes<L, Kind>(c, d.Alpha, x);
-    s.CostLow = s.CostLow + t * lo;
-    s.CostHigh = s.CostHigh + t;
-    s.CostTop = s.CostTop + t * L::Select(L::Lt(zero, g), one, lo);
-    s.Cost = s.Cost + t * x;
-    const M bound = L::Or(L::Le(x, lo), L::Le(one, x));
-    const V tg = t * g;
-    s.FixedCost = s.FixedCost + L::Keep(bound, t * x);
-    s.FreeWeight = s.FreeWeight + L::KeepNot(bound, tg);
-    s.Weight = s.Weight + tg;
-  }
-}
 
 /// The warm-start reduction (section 5.3.1, see PlanReduction): objects in
 /// buckets below Cut reduced by Beta, those in bucket Cut by the fraction
@@ -372,72 +270,6 @@ double BucketFloor(int b)
   return value;
 }
 
-/// One object's start point after the reduction.
-template <class L>
-TIMECRITICAL_LANE_INLINE typename L::V ReducedLanes(typename L::V t, typename L::V g,
-  typename L::V lo, typename L::V x, const ReductionPlan& plan)
-{
-  using V = typename L::V;
-  using M = typename L::M;
-  const V reduced = L::Max(lo, L::Set(plan.Beta) * x);
-  const V value = g / x;
-  const M reducible = L::And(L::Lt(L::Set(0.0), t), L::Lt(lo, x));
-  const M below = L::Le(value, L::Set(plan.Below));
-  const M inCut = L::AndNot(below, L::Le(value, L::Set(plan.Upper)));
-  const V partial = x - L::Set(plan.Theta) * (x - reduced);
-  return L::Select(L::And(reducible, below), reduced, L::Select(L::And(reducible, inCut), partial, x));
-}
-
-/// What each bucket of g_i / r_i gives when its objects are reduced by beta,
-/// summed per lane (consecutive objects mostly share a bucket: one table
-/// would chain every addition on the previous one).
-template <class L>
-TIMECRITICAL_LANE_INLINE void BucketLanes(typename L::V t, typename L::V g, typename L::V lo, typename L::V x, double beta,
-  double* bucketCost)
-{
-  const unsigned reducible = L::Bits(L::And(L::Lt(L::Set(0.0), t), L::Lt(lo, x)));
-  if (reducible == 0)
-  {
-    return;
-  }
-  alignas(16) double value[L::Width], saved[L::Width];
-  L::Store(value, g / x);
-  L::Store(saved, t * (x - L::Max(lo, L::Set(beta) * x)));
-  for (std::size_t k = 0; k < L::Width; ++k)
-  {
-    if ((reducible >> k) & 1u)
-    {
-      bucketCost[k * KeyBuckets + static_cast<std::size_t>(Bucket(value[k]))] += saved[k];
-    }
-  }
-}
-
-template <class L>
-void BucketPassLanes(const double* t, const double* g, const double* lo, const double* r,
-  double beta, std::size_t begin, std::size_t end, double* bucketCost)
-{
-  for (std::size_t i = begin; i < end; i += L::Width)
-  {
-    BucketLanes<L>(L::Load(t + i), L::Load(g + i), L::Load(lo + i), L::Load(r + i), beta, bucketCost);
-  }
-}
-
-/// Applies a reduction: r becomes the start point; its cost and objective.
-template <class L, int Kind>
-void ApplyLanes(const double* t, const double* g, const double* lo, const double* c, double* r,
-  const ReductionPlan& plan, double alpha, std::size_t begin, std::size_t end, typename L::V& cost,
-  typename L::V& objective)
-{
-  for (std::size_t i = begin; i < end; i += L::Width)
-  {
-    const typename L::V ti = L::Load(t + i);
-    const typename L::V y = ReducedLanes<L>(ti, L::Load(g + i), L::Load(lo + i), L::Load(r + i), plan);
-    L::Store(r + i, y);
-    cost = cost + ti * y;
-    objective = objective + TermLanes<L, Kind>(L::Load(c + i), alpha, y);
-  }
-}
-
 /// Objects of the multiplier search, structure of arrays.
 struct Objects
 {
@@ -453,121 +285,115 @@ CandidateArrays CandidatesOf(std::vector<double>& storage)
   return { storage.data(), storage.data() + n, storage.data() + 2 * n };
 }
 
-/// Classification of the objects over [low, high] (see ActiveSetOptimizer::Classify).
-template <class L, bool Buckets>
-void ClassifyLanes(const Objects& o, double low, double high, std::size_t begin, std::size_t end,
-  typename L::V& fixed, typename L::V& slope, std::uint32_t* candidates, std::size_t& count,
-  const double* r, double beta, double* bucketCost)
+/// Sums of the preparation pass (see ActiveSetOptimizer::StartSums).
+struct PrepareTotals
 {
-  using V = typename L::V;
-  using M = typename L::M;
-  const V one = L::Set(1.0), vLow = L::Set(low), vHigh = L::Set(high);
-  std::size_t m = count;
-  for (std::size_t i = begin; i < end; i += L::Width)
-  {
-    const V ti = L::Load(o.T + i), gi = L::Load(o.G + i), loi = L::Load(o.Lo + i);
-    const V yLow = vLow * gi, yHigh = vHigh * gi;
-    const M upper = L::Le(one, yLow);
-    const M lower = L::AndNot(upper, L::Le(yHigh, loi));
-    const M free = L::AndNot(L::Or(upper, lower), L::And(L::Le(loi, yLow), L::Le(yHigh, one)));
-    fixed = fixed + L::Select(upper, ti, L::Keep(lower, ti * loi));
-    slope = slope + L::Keep(free, ti * gi);
-    const unsigned settled = L::Bits(L::Or(L::Or(upper, lower), free));
-    // Written always, kept when unsettled: no branch on the data.
-    for (std::size_t k = 0; k < L::Width; ++k)
-    {
-      candidates[m] = static_cast<std::uint32_t>(i + k);
-      m += ((settled >> k) & 1u) ^ 1u;
-    }
-    if constexpr (Buckets)
-    {
-      BucketLanes<L>(ti, gi, loi, L::Load(r + i), beta, bucketCost);
-    }
-  }
-  count = m;
-}
+  double CostLow = 0.0, CostHigh = 0.0, CostTop = 0.0, Cost = 0.0, Objective = 0.0;
+  double FixedCost = 0.0, FreeWeight = 0.0, Weight = 0.0;
+  std::size_t Invalid = 0, Zero = 0;
+};
 
-/// Sum over objects of tmax clamp(kappa g, rmin, 1) and of its slope at one
-/// or two kappas; moved: objects whose clamp changes form from previous.
-template <class L>
-struct PhiSums
+/// phi = sum tmax clamp(kappa g, rmin, 1) and its slope at kappa and at another kappa.
+struct PhiTotals
 {
-  typename L::V Phi = L::Set(0.0), Slope = L::Set(0.0), PhiHigh = L::Set(0.0), SlopeHigh = L::Set(0.0);
+  double Phi = 0.0, Slope = 0.0, PhiOther = 0.0, SlopeOther = 0.0;
   std::size_t Moved = 0;
 };
 
-template <class L, bool Two, bool Track>
-void PhiLanes(const Objects& o, double kappa, double other, std::size_t begin, std::size_t end,
-  PhiSums<L>& s)
+/// Sums of the answer pass.
+struct FinishTotals
 {
-  using V = typename L::V;
-  using M = typename L::M;
-  const V one = L::Set(1.0), k = L::Set(kappa), k2 = L::Set(other);
-  for (std::size_t i = begin; i < end; i += L::Width)
-  {
-    const V ti = L::Load(o.T + i), gi = L::Load(o.G + i), loi = L::Load(o.Lo + i);
-    const V y = k * gi;
-    const M lower = L::Le(y, loi), upper = L::AndNot(lower, L::Le(one, y));
-    s.Phi = s.Phi + ti * L::Min(L::Max(y, loi), one);
-    s.Slope = s.Slope + L::KeepNot(L::Or(lower, upper), ti * gi);
-    if constexpr (Two || Track)
-    {
-      const V y2 = k2 * gi;
-      const M lower2 = L::Le(y2, loi), upper2 = L::AndNot(lower2, L::Le(one, y2));
-      if constexpr (Two)
-      {
-        s.PhiHigh = s.PhiHigh + ti * L::Min(L::Max(y2, loi), one);
-        s.SlopeHigh = s.SlopeHigh + L::KeepNot(L::Or(lower2, upper2), ti * gi);
-      }
-      if constexpr (Track)
-      {
-        s.Moved += CountBits(L::Bits(L::Or(L::Xor(lower, lower2), L::Xor(upper, upper2))));
-      }
-    }
-  }
-}
-
-/// r = clamp(kappa g, rmin, 1) and its sums (see ActiveSetOptimizer::Finish);
-/// with Start, also the objective of the start point: r reduced by plan.
-template <class L>
-struct FinishSums
-{
-  typename L::V Objective = L::Set(0.0), Cost = L::Set(0.0), StartObjective = L::Set(0.0);
+  double Objective = 0.0, Cost = 0.0, StartObjective = 0.0;
   std::size_t Free = 0, Lower = 0, Upper = 0;
 };
 
-template <class L, int Kind, bool Start>
-void FinishLanes(const double* t, const double* g, const double* lo, const double* c, double* r,
-  double kappa, double alpha, const ReductionPlan& plan, std::size_t begin, std::size_t end,
-  FinishSums<L>& s)
+/// The reduction's bucket sums: MaxLanes sub-tables of KeyBuckets, and the
+/// range of buckets touched since they were last cleared.
+struct BucketTable
 {
-  using V = typename L::V;
-  using M = typename L::M;
-  const V zero = L::Set(0.0), one = L::Set(1.0), k = L::Set(kappa);
-  for (std::size_t i = begin; i < end; i += L::Width)
+  double* Cost = nullptr;
+  int Low = KeyBuckets, High = -1;
+};
+
+namespace base
+{
+#if defined(__SSE2__)
+using LaneN = Lane2;
+#else
+using LaneN = Lane1;
+#endif
+#include "ActiveSetOptimizer.inl"
+}
+
+#if defined(TIMECRITICAL_AVX2)
+#if defined(__clang__)
+#pragma clang attribute push(__attribute__((target("avx2"))), apply_to = function)
+#else
+#pragma GCC push_options
+#pragma GCC target("avx2")
+#endif
+namespace avx2
+{
+/// Four doubles per instruction: the divisions and roots of the passes
+/// take half the time of Lane2's.
+struct Lane4
+{
+  using V = __m256d;
+  using M = __m256d;
+  static constexpr std::size_t Width = 4;
+  static TIMECRITICAL_LANE_INLINE V Load(const double* p) { return _mm256_loadu_pd(p); }
+  static TIMECRITICAL_LANE_INLINE void Store(double* p, V v) { _mm256_storeu_pd(p, v); }
+  static TIMECRITICAL_LANE_INLINE V Set(double x) { return _mm256_set1_pd(x); }
+  static TIMECRITICAL_LANE_INLINE V Min(V a, V b) { return _mm256_min_pd(b, a); }
+  static TIMECRITICAL_LANE_INLINE V Max(V a, V b) { return _mm256_max_pd(b, a); }
+  static TIMECRITICAL_LANE_INLINE V Sqrt(V a) { return _mm256_sqrt_pd(a); }
+  static TIMECRITICAL_LANE_INLINE M Le(V a, V b) { return _mm256_cmp_pd(a, b, _CMP_LE_OQ); }
+  static TIMECRITICAL_LANE_INLINE M Lt(V a, V b) { return _mm256_cmp_pd(a, b, _CMP_LT_OQ); }
+  static TIMECRITICAL_LANE_INLINE M Eq(V a, V b) { return _mm256_cmp_pd(a, b, _CMP_EQ_OQ); }
+  static TIMECRITICAL_LANE_INLINE M And(M a, M b) { return _mm256_and_pd(a, b); }
+  static TIMECRITICAL_LANE_INLINE M Or(M a, M b) { return _mm256_or_pd(a, b); }
+  static TIMECRITICAL_LANE_INLINE M AndNot(M a, M b) { return _mm256_andnot_pd(a, b); }
+  static TIMECRITICAL_LANE_INLINE M Xor(M a, M b) { return _mm256_xor_pd(a, b); }
+  static TIMECRITICAL_LANE_INLINE V Select(M m, V a, V b) { return _mm256_blendv_pd(b, a, m); }
+  static TIMECRITICAL_LANE_INLINE V Keep(M m, V a) { return _mm256_and_pd(m, a); }
+  static TIMECRITICAL_LANE_INLINE V KeepNot(M m, V a) { return _mm256_andnot_pd(m, a); }
+  static TIMECRITICAL_LANE_INLINE double Sum(V a)
   {
-    const V ti = L::Load(t + i), loi = L::Load(lo + i), ci = L::Load(c + i);
-    // kappa = infinity (time not binding): g = 0 stays at rmin, not NaN.
-    const V gi = L::Load(g + i);
-    if constexpr (Start)
-    {
-      // As ApplyLanes sums it, so that both report the same f.
-      const V y = ReducedLanes<L>(ti, gi, loi, L::Load(r + i), plan);
-      s.StartObjective = s.StartObjective + TermLanes<L, Kind>(ci, alpha, y);
-    }
-    const V x = L::Min(L::Max(L::Keep(L::Lt(zero, gi), k * gi), loi), one);
-    L::Store(r + i, x);
-    s.Objective = s.Objective + TermLanes<L, Kind>(ci, alpha, x);
-    s.Cost = s.Cost + ti * x;
-    const M inProblem = L::Lt(zero, ti);
-    const M lower = L::Le(x, loi);
-    const M upper = L::AndNot(lower, L::Le(one, x));
-    const unsigned in = L::Bits(inProblem);
-    const unsigned lowerBits = L::Bits(lower) & in, upperBits = L::Bits(upper) & in;
-    s.Lower += CountBits(lowerBits);
-    s.Upper += CountBits(upperBits);
-    s.Free += CountBits(in & ~(lowerBits | upperBits));
+    const __m128d half = _mm_add_pd(_mm256_castpd256_pd128(a), _mm256_extractf128_pd(a, 1));
+    return _mm_cvtsd_f64(half) + _mm_cvtsd_f64(_mm_unpackhi_pd(half, half));
   }
+  static TIMECRITICAL_LANE_INLINE unsigned Bits(M m) { return static_cast<unsigned>(_mm256_movemask_pd(m)); }
+  template <class F>
+  static TIMECRITICAL_LANE_INLINE V Map(V a, F f)
+  {
+    alignas(32) double x[4];
+    _mm256_store_pd(x, a);
+    return _mm256_set_pd(f(x[3]), f(x[2]), f(x[1]), f(x[0]));
+  }
+};
+using LaneN = Lane4;
+#include "ActiveSetOptimizer.inl"
+}
+#if defined(__clang__)
+#pragma clang attribute pop
+#else
+#pragma GCC pop_options
+#endif
+#endif
+
+/// f(avx2::Api()) where the processor has AVX2, else f(base::Api()).
+template <class F>
+void WithLanes(F&& f)
+{
+#if defined(TIMECRITICAL_AVX2)
+  static const bool avx2 = __builtin_cpu_supports("avx2");
+  if (avx2)
+  {
+    f(avx2::Api());
+    return;
+  }
+#endif
+  f(base::Api());
 }
 }
 
@@ -613,7 +439,7 @@ void ActiveSetOptimizer::Reserve(std::size_t n)
   }
   if (this->BucketCost.empty())
   {
-    this->BucketCost.resize(LaneN::Width * KeyBuckets);
+    this->BucketCost.resize(MaxLanes * KeyBuckets);
   }
 }
 
@@ -653,36 +479,31 @@ void ActiveSetOptimizer::Prepare(
   // object), the start point (rmin, or the previous resolution clamped to the
   // bounds), and every sum the rest needs. Invalid or zero tmax: T = G = 0,
   // which keeps the object at rmin in every formula below.
-  const std::size_t n = this->N;
   const PrepareData data{ problem.Weight, problem.MaxTime, problem.MinResolution, r,
     this->T.data(), this->Lo.data(), this->C.data(), this->G.data(), this->Gamma, this->Alpha,
     warmStart };
-  const std::size_t body = n - n % LaneN::Width;
-  PrepareSums<LaneN> wide;
-  PrepareLanes<LaneN, Kind>(data, 0, body, wide);
-  PrepareSums<Lane1> tail;
-  PrepareLanes<Lane1, Kind>(data, body, n, tail);
-  sums.CostLow = LaneN::Sum(wide.CostLow) + tail.CostLow;
-  sums.CostHigh = LaneN::Sum(wide.CostHigh) + tail.CostHigh;
-  sums.CostTop = LaneN::Sum(wide.CostTop) + tail.CostTop;
-  sums.Cost = LaneN::Sum(wide.Cost) + tail.Cost;
-  sums.Objective = LaneN::Sum(wide.Objective) + tail.Objective;
-  sums.FixedCost = LaneN::Sum(wide.FixedCost) + tail.FixedCost;
-  sums.FreeWeight = LaneN::Sum(wide.FreeWeight) + tail.FreeWeight;
-  sums.Weight = LaneN::Sum(wide.Weight) + tail.Weight;
-  sums.Invalid = wide.Invalid + tail.Invalid;
-  sums.Zero = wide.Zero + tail.Zero;
+  PrepareTotals totals;
+  WithLanes([&](auto api) { decltype(api)::template Prepare<Kind>(data, this->N, totals); });
+  sums.CostLow = totals.CostLow;
+  sums.CostHigh = totals.CostHigh;
+  sums.CostTop = totals.CostTop;
+  sums.Cost = totals.Cost;
+  sums.Objective = totals.Objective;
+  sums.FixedCost = totals.FixedCost;
+  sums.FreeWeight = totals.FreeWeight;
+  sums.Weight = totals.Weight;
+  sums.Invalid = totals.Invalid;
+  sums.Zero = totals.Zero;
 }
 
 void ActiveSetOptimizer::BucketPass(const double* r, double beta)
 {
-  const std::size_t n = this->N;
-  const std::size_t body = n - n % LaneN::Width;
-  double* bucketCost = this->BucketCost.data();
-  std::fill(bucketCost, bucketCost + LaneN::Width * KeyBuckets, 0.0);
-  BucketPassLanes<LaneN>(this->T.data(), this->G.data(), this->Lo.data(), r, beta, 0, body, bucketCost);
-  BucketPassLanes<Lane1>(this->T.data(), this->G.data(), this->Lo.data(), r, beta, body, n, bucketCost);
-  this->Work += n;
+  const Objects all{ this->T.data(), this->G.data(), this->Lo.data() };
+  BucketTable table{ this->BucketCost.data(), this->BucketLow, this->BucketHigh };
+  WithLanes([&](auto api) { decltype(api)::Buckets(all, r, beta, this->N, table); });
+  this->BucketLow = table.Low;
+  this->BucketHigh = table.High;
+  this->Work += this->N;
 }
 
 ActiveSetOptimizer::Reduction ActiveSetOptimizer::PlanReduction(
@@ -710,33 +531,47 @@ ActiveSetOptimizer::Reduction ActiveSetOptimizer::PlanReduction(
       this->BucketPass(r, plan.Beta);
     }
     bucketsSummed = false;
+    // Merge the lanes' sub-tables over the touched buckets, and clear them
+    // (the table is all zero between uses).
     double total = 0.0;
-    for (std::size_t b = 0; b < static_cast<std::size_t>(KeyBuckets); ++b)
+    const int low = this->BucketLow, high = this->BucketHigh;
+    for (int b = low; b <= high; ++b)
     {
-      for (std::size_t k = 1; k < LaneN::Width; ++k)
+      const std::size_t at = static_cast<std::size_t>(b);
+      for (std::size_t k = 1; k < MaxLanes; ++k)
       {
-        bucketCost[b] += bucketCost[k * KeyBuckets + b];
+        bucketCost[at] += bucketCost[k * KeyBuckets + at];
+        bucketCost[k * KeyBuckets + at] = 0.0;
       }
-      total += bucketCost[b];
+      total += bucketCost[at];
     }
+    this->BucketLow = KeyBuckets;
+    this->BucketHigh = -1;
+    auto clear = [&]() {
+      std::fill(bucketCost + std::max(low, 0), bucketCost + std::max(low, high + 1), 0.0);
+    };
     if (!(total > 0.0))
     {
+      clear();
       break;
     }
     const double excess = sums.Cost - budget;
     double below = 0.0;
-    plan.Cut = 0;
-    for (; plan.Cut < KeyBuckets && below + bucketCost[plan.Cut] < excess; ++plan.Cut)
+    plan.Cut = std::max(low, 0);
+    for (; plan.Cut <= high && below + bucketCost[plan.Cut] < excess; ++plan.Cut)
     {
       below += bucketCost[plan.Cut];
     }
     plan.Active = true;
-    if (plan.Cut < KeyBuckets)
+    if (plan.Cut <= high)
     {
       // Rounded up so that the start's cost cannot land above the budget.
       plan.Theta = std::min(1.0, (excess - below + rounding) / bucketCost[plan.Cut]);
+      clear();
       return plan;
     }
+    clear();
+    plan.Cut = KeyBuckets;
     plan.Theta = 1.0;
     WithKind(this->Alpha, [&](auto kind) { this->ApplyReduction<decltype(kind)::value>(r, plan, sums); });
     plan.Active = false;
@@ -757,18 +592,13 @@ ActiveSetOptimizer::Reduction ActiveSetOptimizer::PlanReduction(
 template <int Kind>
 void ActiveSetOptimizer::ApplyReduction(double* r, const Reduction& plan, StartSums& sums)
 {
-  const std::size_t n = this->N;
-  const std::size_t body = n - n % LaneN::Width;
+  const Objects all{ this->T.data(), this->G.data(), this->Lo.data() };
   const ReductionPlan lanes{ BucketFloor(plan.Cut), BucketFloor(plan.Cut + 1), plan.Theta, plan.Beta };
-  LaneN::V wideCost = LaneN::Set(0.0), wideObjective = LaneN::Set(0.0);
-  double cost = 0.0, objective = 0.0;
-  ApplyLanes<LaneN, Kind>(this->T.data(), this->G.data(), this->Lo.data(), this->C.data(), r,
-    lanes, this->Alpha, 0, body, wideCost, wideObjective);
-  ApplyLanes<Lane1, Kind>(this->T.data(), this->G.data(), this->Lo.data(), this->C.data(), r,
-    lanes, this->Alpha, body, n, cost, objective);
-  this->Work += n;
-  sums.Cost = LaneN::Sum(wideCost) + cost;
-  sums.Objective = LaneN::Sum(wideObjective) + objective;
+  WithLanes([&](auto api) {
+    decltype(api)::template Apply<Kind>(
+      all, this->C.data(), r, lanes, this->Alpha, this->N, sums.Cost, sums.Objective);
+  });
+  this->Work += this->N;
 }
 
 double ActiveSetOptimizer::Classify(
@@ -780,29 +610,15 @@ double ActiveSetOptimizer::Classify(
   // Objects out of the problem have T = G = 0: at rmin, costing nothing.
   // With bucketsOf, the same pass does the warm-start reduction's BucketPass.
   const std::size_t n = this->N;
-  const std::size_t body = n - n % LaneN::Width;
   const Objects all{ this->T.data(), this->G.data(), this->Lo.data() };
   std::uint32_t* candidates = this->Order.data();
-  double* bucketCost = this->BucketCost.data();
-  LaneN::V wideFixed = LaneN::Set(0.0), wideSlope = LaneN::Set(0.0);
+  BucketTable table{ this->BucketCost.data(), this->BucketLow, this->BucketHigh };
   double fixed = 0.0;
-  slope = 0.0;
-  count = 0;
-  if (bucketsOf)
-  {
-    std::fill(bucketCost, bucketCost + LaneN::Width * KeyBuckets, 0.0);
-    ClassifyLanes<LaneN, true>(
-      all, low, high, 0, body, wideFixed, wideSlope, candidates, count, bucketsOf, beta, bucketCost);
-    ClassifyLanes<Lane1, true>(
-      all, low, high, body, n, fixed, slope, candidates, count, bucketsOf, beta, bucketCost);
-  }
-  else
-  {
-    ClassifyLanes<LaneN, false>(
-      all, low, high, 0, body, wideFixed, wideSlope, candidates, count, nullptr, beta, bucketCost);
-    ClassifyLanes<Lane1, false>(
-      all, low, high, body, n, fixed, slope, candidates, count, nullptr, beta, bucketCost);
-  }
+  WithLanes([&](auto api) {
+    fixed = decltype(api)::Classify(all, n, low, high, slope, candidates, count, bucketsOf, beta, table);
+  });
+  this->BucketLow = table.Low;
+  this->BucketHigh = table.High;
   // Their data side by side, for the lane passes of the search.
   const CandidateArrays out = CandidatesOf(this->Candidates);
   for (std::size_t j = 0; j < count; ++j)
@@ -813,8 +629,7 @@ double ActiveSetOptimizer::Classify(
     out.Lo[j] = all.Lo[i];
   }
   this->Work += n + count;
-  slope += LaneN::Sum(wideSlope);
-  return fixed + LaneN::Sum(wideFixed);
+  return fixed;
 }
 
 template <bool Two, bool Track>
@@ -824,17 +639,14 @@ void ActiveSetOptimizer::CandidatePhi(
 {
   const CandidateArrays c = CandidatesOf(this->Candidates);
   const Objects o{ c.T, c.G, c.Lo };
-  const std::size_t body = count - count % LaneN::Width;
-  PhiSums<LaneN> wide;
-  PhiLanes<LaneN, Two, Track>(o, kappa, other, 0, body, wide);
-  PhiSums<Lane1> tail;
-  PhiLanes<Lane1, Two, Track>(o, kappa, other, body, count, tail);
+  PhiTotals totals;
+  WithLanes([&](auto api) { decltype(api)::template Phi<Two, Track>(o, count, kappa, other, totals); });
   this->Work += count;
-  phi += LaneN::Sum(wide.Phi) + tail.Phi;
-  slope += LaneN::Sum(wide.Slope) + tail.Slope;
-  phiOther += LaneN::Sum(wide.PhiHigh) + tail.PhiHigh;
-  slopeOther += LaneN::Sum(wide.SlopeHigh) + tail.SlopeHigh;
-  moved = wide.Moved + tail.Moved;
+  phi += totals.Phi;
+  slope += totals.Slope;
+  phiOther += totals.PhiOther;
+  slopeOther += totals.SlopeOther;
+  moved = totals.Moved;
 }
 
 bool ActiveSetOptimizer::SolveCandidates(double& low, double& high, double fixedCost,
@@ -892,31 +704,32 @@ void ActiveSetOptimizer::Finish(
   // multiplier of eq. 16 is non-negative at such a point by construction.
   // A planned warm-start reduction is applied here only to report f at the
   // start point: the pass reads r anyway, and nothing else needs that point.
-  const std::size_t n = this->N;
   const double alpha = this->Alpha;
-  const std::size_t body = n - n % LaneN::Width;
   const ReductionPlan lanes{ BucketFloor(plan.Cut), BucketFloor(plan.Cut + 1), plan.Theta, plan.Beta };
-  const double *t = this->T.data(), *g = this->G.data(), *lo = this->Lo.data(), *c = this->C.data();
-  FinishSums<LaneN> wide;
-  FinishSums<Lane1> tail;
+  const Objects all{ this->T.data(), this->G.data(), this->Lo.data() };
+  FinishTotals totals;
+  WithLanes([&](auto api) {
+    using Api = decltype(api);
+    if (plan.Active)
+    {
+      Api::template Finish<Kind, true>(all, this->C.data(), r, kappa, alpha, lanes, this->N, totals);
+    }
+    else
+    {
+      Api::template Finish<Kind, false>(all, this->C.data(), r, kappa, alpha, lanes, this->N, totals);
+    }
+  });
+  this->Work += this->N;
   if (plan.Active)
   {
-    FinishLanes<LaneN, Kind, true>(t, g, lo, c, r, kappa, alpha, lanes, 0, body, wide);
-    FinishLanes<Lane1, Kind, true>(t, g, lo, c, r, kappa, alpha, lanes, body, n, tail);
-    result.InitialObjective = LaneN::Sum(wide.StartObjective) + tail.StartObjective;
+    result.InitialObjective = totals.StartObjective;
   }
-  else
-  {
-    FinishLanes<LaneN, Kind, false>(t, g, lo, c, r, kappa, alpha, lanes, 0, body, wide);
-    FinishLanes<Lane1, Kind, false>(t, g, lo, c, r, kappa, alpha, lanes, body, n, tail);
-  }
-  this->Work += n;
-  const double cost = LaneN::Sum(wide.Cost) + tail.Cost;
-  result.Objective = LaneN::Sum(wide.Objective) + tail.Objective;
+  const double cost = totals.Cost;
+  result.Objective = totals.Objective;
   result.Cost = cost;
-  result.FreeCount = wide.Free + tail.Free;
-  result.LowerCount = wide.Lower + tail.Lower;
-  result.UpperCount = wide.Upper + tail.Upper;
+  result.FreeCount = totals.Free;
+  result.LowerCount = totals.Lower;
+  result.UpperCount = totals.Upper;
   // The time constraint is tight unless nothing can rise above rmin (kappa
   // 0) or every object that can is at 1 (kappa infinite).
   const double violation = (cost - rawBudget) / rawBudget;

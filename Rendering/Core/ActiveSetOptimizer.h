@@ -203,7 +203,8 @@ private:
   std::vector<std::uint8_t> State;
   std::vector<std::uint32_t> Order; // the multiplier search's candidates
   std::vector<double> Candidates;   // their tmax, g and rmin
-  std::vector<double> BucketCost;    // reducible cost per bucket
+  std::vector<double> BucketCost;    // reducible cost per bucket and lane
+  int BucketLow = 1 << 30, BucketHigh = -1; // buckets touched since cleared
   // Current call.
   std::size_t N = 0;
   double Alpha = 1.0, Gamma = 0.5;
