@@ -11,6 +11,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -303,6 +304,190 @@ TEST(ActiveSetOptimizer, WarmStartReducesWork)
             << warmSeconds << " cold " << coldSeconds << "\n";
 }
 
+/// The benchmark's frame to frame change: weights by up to 10 %, the budget's
+/// free part by up to 5 % either way.
+RandomProblem NextFrame(const RandomProblem& base, unsigned seed)
+{
+  RandomProblem p = base;
+  timecritical_test::Perturb(p, 0.10, seed);
+  const double s = 1.0 + 0.05 * std::sin(1.7 * seed);
+  p.Budget = p.CostAtMin() + s * (base.Budget - base.CostAtMin());
+  return p;
+}
+
+TEST(ActiveSetOptimizer, WarmFromTheOptimumReturnsItInOneStep)
+{
+  // The previous frame's answer to the same problem: one pass finds the
+  // multiplier in the interval around the start's, and the answer is that
+  // point again.
+  for (double alpha : { 1.0, 2.0, -0.5 })
+  {
+    RandomProblem p = MakeRandomProblem(20001, alpha, 31);
+    const ResolutionProblem view = p.View();
+    ActiveSetOptimizer optimizer(Unlimited());
+    std::vector<double> optimum(p.Weight.size());
+    ASSERT_EQ(optimizer.Solve(view, optimum.data(), false).State, Status::Optimal);
+    std::vector<double> r = optimum;
+    const auto warm = optimizer.Solve(view, r.data(), true);
+    SCOPED_TRACE("alpha " + std::to_string(alpha));
+    ASSERT_EQ(warm.State, Status::Optimal);
+    EXPECT_EQ(warm.Iterations, 1);
+    EXPECT_EQ(warm.Steps, 1);
+    // Within the root's tolerance (phi meets the budget to 2 n eps).
+    EXPECT_NEAR(warm.Objective, warm.InitialObjective, 1e-10 * std::abs(warm.Objective));
+    double deviation = 0.0;
+    for (std::size_t i = 0; i < r.size(); ++i)
+    {
+      deviation = std::max(deviation, std::abs(r[i] - optimum[i]));
+    }
+    EXPECT_LE(deviation, 1e-10);
+  }
+}
+
+TEST(ActiveSetOptimizer, WarmAndColdAgreeOnPerturbedFrames)
+{
+  // The benchmark's sequence at 20,000 objects: every frame warm-started from
+  // the previous frame's answer (over budget whenever the budget shrank: the
+  // Beta reduction runs) reaches the cold solve's objective, and both satisfy
+  // the KKT conditions checked from scratch.
+  for (double alpha : { 1.0, 2.0, -0.5 })
+  {
+    const RandomProblem base = MakeRandomProblem(20003, alpha, 41);
+    ActiveSetOptimizer warmOptimizer(Unlimited()), coldOptimizer(Unlimited());
+    std::vector<double> warm(base.Weight.size()), cold(base.Weight.size());
+    ASSERT_EQ(warmOptimizer.Solve(base.View(), warm.data(), false).State, Status::Optimal);
+    long warmSteps = 0, coldSteps = 0;
+    for (unsigned frame = 1; frame <= 8; ++frame)
+    {
+      const RandomProblem p = NextFrame(base, 100 * static_cast<unsigned>(alpha * 10 + 10) + frame);
+      const ResolutionProblem view = p.View();
+      const auto w = warmOptimizer.Solve(view, warm.data(), true);
+      const auto c = coldOptimizer.Solve(view, cold.data(), false);
+      SCOPED_TRACE("alpha " + std::to_string(alpha) + " frame " + std::to_string(frame));
+      ASSERT_EQ(w.State, Status::Optimal);
+      ASSERT_EQ(c.State, Status::Optimal);
+      EXPECT_LE(std::abs(RelativeGap(w.Objective, c.Objective)), 1e-12);
+      EXPECT_LE(view.Cost(warm.data()), view.Budget);
+      EXPECT_LE(CheckKKT(view, warm.data()).Worst(), 1e-7);
+      EXPECT_LE(w.Objective, w.InitialObjective);
+      // The warm start begins much closer to the optimum.
+      EXPECT_LT(w.InitialObjective - w.Objective, 0.1 * (c.InitialObjective - c.Objective));
+      warmSteps += w.Steps;
+      coldSteps += c.Steps;
+    }
+    EXPECT_LE(warmSteps, coldSteps);
+  }
+}
+
+TEST(ActiveSetOptimizer, ReducedStartSpendsTheBudgetAndReportsOneObjective)
+{
+  // Section 5.3.1's reduction of an over-budget warm start: least valuable
+  // first, the last bucket by the fraction that meets the budget. The start
+  // is the same point, with the same f, whether the search then runs (which
+  // reports f at the start without building it) or is not allowed to.
+  for (std::size_t n : { std::size_t(1001), std::size_t(20000) })
+  {
+    RandomProblem p = MakeRandomProblem(n, 1.0, 51, 0.4);
+    std::vector<double> previous(n);
+    ActiveSetOptimizer optimizer(Unlimited());
+    ASSERT_EQ(optimizer.Solve(p.View(), previous.data(), false).State, Status::Optimal);
+    for (double fraction : { 0.37, 0.25, 0.05 })
+    {
+      p.SetBudgetFraction(fraction);
+      const ResolutionProblem view = p.View();
+      ActiveSetOptimizer::Options none = Unlimited();
+      none.MaxIterations = 0;
+      ActiveSetOptimizer start(none);
+      std::vector<double> r0 = previous, r1 = previous;
+      const auto s = start.Solve(view, r0.data(), true);
+      const auto full = optimizer.Solve(view, r1.data(), true);
+      SCOPED_TRACE("n " + std::to_string(n) + " fraction " + std::to_string(fraction));
+      EXPECT_EQ(s.State, Status::IterationLimit);
+      ASSERT_EQ(full.State, Status::Optimal);
+      EXPECT_LE(view.Cost(r0.data()), view.Budget);
+      EXPECT_GE(view.Cost(r0.data()), (1.0 - 1e-9) * view.Budget);
+      EXPECT_NEAR(s.Objective, view.Objective(r0.data()), 1e-12 * std::abs(s.Objective));
+      EXPECT_EQ(full.InitialObjective, s.InitialObjective);
+      // Reduced, not reset: better than every object at rmin.
+      std::vector<double> minimum = p.MinResolution;
+      EXPECT_LT(s.Objective, view.Objective(minimum.data()));
+      for (std::size_t i = 0; i < n; ++i)
+      {
+        ASSERT_LE(r0[i], previous[i]);
+        ASSERT_GE(r0[i], p.MinResolution[i]);
+      }
+    }
+  }
+}
+
+TEST(ActiveSetOptimizer, TimeNotBindingWhenTheRestIsAtRmin)
+{
+  // Objects with c = 0 stay at rmin; when the others all fit at 1 the time
+  // constraint is slack (multiplier 0), though cost(1) is over the budget.
+  RandomProblem p = MakeRandomProblem(1003, 1.0, 61);
+  double top = 0.0;
+  for (std::size_t i = 0; i < p.Weight.size(); ++i)
+  {
+    if (i % 3 == 0)
+    {
+      p.Weight[i] = 0.0;
+    }
+    top += p.MaxTime[i] * (i % 3 == 0 ? p.MinResolution[i] : 1.0);
+  }
+  p.Budget = 0.5 * (top + p.CostAtFull());
+  for (bool warm : { false, true })
+  {
+    std::vector<double> r(p.Weight.size(), 0.5);
+    ActiveSetOptimizer optimizer(Unlimited());
+    const auto result = optimizer.Solve(p.View(), r.data(), warm);
+    EXPECT_EQ(result.State, Status::Optimal);
+    EXPECT_EQ(result.Multiplier, 0.0);
+    for (std::size_t i = 0; i < r.size(); ++i)
+    {
+      ASSERT_EQ(r[i], i % 3 == 0 ? p.MinResolution[i] : 1.0) << i;
+    }
+  }
+}
+
+TEST(ActiveSetOptimizer, ExtremeExponentsStayFiniteAndFeasible)
+{
+  // alpha = -0.9 (gamma = 10) with weights over 60 decades: the g_i span
+  // 600, past the largest kappa for some objects. Every answer is finite,
+  // feasible, no worse than the start, and optimal whenever it says so.
+  for (unsigned seed = 1; seed <= 6; ++seed)
+  {
+    RandomProblem p = MakeRandomProblem(4001, -0.9, seed, 0.5);
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> decades(-30.0, 30.0);
+    for (double& c : p.Weight)
+    {
+      c *= std::pow(10.0, decades(rng));
+    }
+    const ResolutionProblem view = p.View();
+    for (bool warm : { false, true })
+    {
+      std::vector<double> r(p.Weight.size(), 0.3);
+      ActiveSetOptimizer optimizer(Unlimited());
+      const auto result = optimizer.Solve(view, r.data(), warm);
+      SCOPED_TRACE("seed " + std::to_string(seed) + (warm ? " warm" : " cold"));
+      EXPECT_TRUE(result.State == Status::Optimal || result.State == Status::IterationLimit)
+        << ActiveSetOptimizer::GetStatusName(result.State);
+      for (std::size_t i = 0; i < r.size(); ++i)
+      {
+        ASSERT_TRUE(std::isfinite(r[i]));
+        ASSERT_GE(r[i], p.MinResolution[i]);
+        ASSERT_LE(r[i], 1.0);
+      }
+      EXPECT_LE(view.Cost(r.data()), view.Budget);
+      EXPECT_LE(result.Objective, result.InitialObjective + 1e-12 * std::abs(result.Objective));
+      if (result.State == Status::Optimal)
+      {
+        EXPECT_LE(result.KKTResidual, 1e-8);
+      }
+    }
+  }
+}
+
 TEST(ActiveSetOptimizer, WarmStartRestoresFeasibilityAndStartsNewObjectsAtMinimum)
 {
   RandomProblem p = MakeRandomProblem(1000, 1.0, 9, 0.6);
@@ -345,6 +530,8 @@ TEST(ActiveSetOptimizer, NoAllocationInSteadyState)
   for (int frame = 0; frame < 20; ++frame)
   {
     timecritical_test::Perturb(p, 0.05, static_cast<unsigned>(frame));
+    // Budget cuts: the warm start is over budget and gets reduced.
+    p.SetBudgetFraction(frame % 3 == 0 ? 0.2 : 0.3);
     optimizer.Solve(p.View(), r.data(), true);
     optimizer.Solve(smaller.View(), r.data(), frame % 2 == 0);
   }
