@@ -189,6 +189,9 @@ struct Lane1
   }
 };
 
+/// The float bit pattern's third plus this estimates a cube root to 4 %.
+constexpr int CbrtMagic = 0x2a5137a0;
+
 #if defined(__SSE2__)
 struct Lane2
 {
@@ -201,6 +204,13 @@ struct Lane2
   static V Min(V a, V b) { return _mm_min_pd(b, a); } // a when a is NaN, as Lane1
   static V Max(V a, V b) { return _mm_max_pd(b, a); }
   static V Sqrt(V a) { return _mm_sqrt_pd(a); }
+  static V CbrtEstimate(V x)
+  {
+    const __m128i bits = _mm_castps_si128(_mm_cvtpd_ps(x));
+    const __m128i third =
+      _mm_cvttps_epi32(_mm_mul_ps(_mm_cvtepi32_ps(bits), _mm_set1_ps(1.0f / 3.0f)));
+    return _mm_cvtps_pd(_mm_castsi128_ps(_mm_add_epi32(third, _mm_set1_epi32(CbrtMagic))));
+  }
   static M Le(V a, V b) { return _mm_cmple_pd(a, b); }
   static M Lt(V a, V b) { return _mm_cmplt_pd(a, b); }
   static M Eq(V a, V b) { return _mm_cmpeq_pd(a, b); }
@@ -347,6 +357,13 @@ struct Lane4
   static TIMECRITICAL_LANE_INLINE V Min(V a, V b) { return _mm256_min_pd(b, a); }
   static TIMECRITICAL_LANE_INLINE V Max(V a, V b) { return _mm256_max_pd(b, a); }
   static TIMECRITICAL_LANE_INLINE V Sqrt(V a) { return _mm256_sqrt_pd(a); }
+  static TIMECRITICAL_LANE_INLINE V CbrtEstimate(V x)
+  {
+    const __m128i bits = _mm_castps_si128(_mm256_cvtpd_ps(x));
+    const __m128i third =
+      _mm_cvttps_epi32(_mm_mul_ps(_mm_cvtepi32_ps(bits), _mm_set1_ps(1.0f / 3.0f)));
+    return _mm256_cvtps_pd(_mm_castsi128_ps(_mm_add_epi32(third, _mm_set1_epi32(CbrtMagic))));
+  }
   static TIMECRITICAL_LANE_INLINE M Le(V a, V b) { return _mm256_cmp_pd(a, b, _CMP_LE_OQ); }
   static TIMECRITICAL_LANE_INLINE M Lt(V a, V b) { return _mm256_cmp_pd(a, b, _CMP_LT_OQ); }
   static TIMECRITICAL_LANE_INLINE M Eq(V a, V b) { return _mm256_cmp_pd(a, b, _CMP_EQ_OQ); }
