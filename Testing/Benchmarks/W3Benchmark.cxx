@@ -370,6 +370,8 @@ void Usage()
                "  --frames N     frames of the flight (default 120)\n"
                "  --target S     target frame time in seconds (default 0.1)\n"
                "  --scale F      replicas per kind times F (default 1; --quick: 0.02)\n"
+               "  --warmup N     untimed frames at the first camera after the first render\n"
+               "                 (default 3, as W1)\n"
                "  --quick        a small scene, 20 frames (smoke test)\n"
                "  --no-plot      accepted for scripts/benchmark-runner.sh (there is no plot)\n";
 }
@@ -382,6 +384,7 @@ int main(int argc, char* argv[])
   int frames = 120;
   double target = 0.1;
   double scale = 1.0;
+  int warmup = 3;
   for (int i = 1; i < argc; ++i)
   {
     const std::string arg = argv[i];
@@ -401,6 +404,8 @@ int main(int argc, char* argv[])
       frames = std::max(2, std::stoi(next()));
     else if (arg == "--target")
       target = std::stod(next());
+    else if (arg == "--warmup")
+      warmup = std::max(0, std::stoi(next()));
     else if (arg == "--scale")
       scale = std::stod(next());
     else if (arg == "--quick")
@@ -579,6 +584,11 @@ int main(int argc, char* argv[])
     const double firstSeconds = Seconds(t0, Clock::now());
     memory.push_back(Sample("first render (calibration, buffers)"));
 
+    for (int w = 0; w < warmup; ++w)
+    {
+      TimedRender(window);
+    }
+
     std::vector<Frame> records;
     for (int f = 0; f < frames; ++f)
     {
@@ -653,11 +663,16 @@ int main(int argc, char* argv[])
               << " B/tri), CPU packing vectors " << Number(vboPacked / MiB, 5) << " MiB ("
               << Number(vboPacked / T, 4) << " B/tri); index buffer at full size "
               << Number(ibo / MiB, 5) << " MiB (12 B/tri)\n";
+    for (int a = 0; a < 3; ++a)
+    {
+      std::cout << "    " << attributes[a] << ": GL " << Number(vbo[a][0] / T, 4) << " B/tri, packing vector "
+                << Number(vbo[a][1] / T, 4) << " B/tri\n";
+    }
 
     std::ofstream json(output / "w3.json");
     json << "{\n  \"objects\": " << placed.size() << ", \"triangles\": " << sceneTriangles
          << ", \"points\": " << scenePoints << ", \"frames\": " << frames
-         << ", \"target\": " << Number(target) << ", \"extent\": " << Number(extent)
+         << ", \"warmup\": " << warmup << ", \"target\": " << Number(target) << ", \"extent\": " << Number(extent)
          << ", \"shared_data\": " << (shared ? "true" : "false") << ",\n  \"kinds\": [";
     for (size_t k = 0; k < kinds.size(); ++k)
     {
@@ -687,7 +702,13 @@ int main(int argc, char* argv[])
          << ", \"renderer_above_input_rss\": " << Number(first.RSS - input.RSS, 12)
          << ", \"renderer_above_input_heap\": " << Number(first.Heap - input.Heap, 12)
          << ", \"vbo_gl\": " << Number(vboGL, 12) << ", \"vbo_packed\": " << Number(vboPacked, 12)
-         << ", \"ibo_full\": " << Number(ibo, 12) << "},\n  \"rows\": [";
+         << ", \"ibo_full\": " << Number(ibo, 12) << ", \"vbo\": {";
+    for (int a = 0; a < 3; ++a)
+    {
+      json << (a ? ", " : "") << Quoted(attributes[a]) << ": {\"gl\": " << Number(vbo[a][0], 12)
+           << ", \"packed\": " << Number(vbo[a][1], 12) << "}";
+    }
+    json << "}},\n  \"rows\": [";
     for (size_t f = 0; f < records.size(); ++f)
     {
       json << (f ? ",\n    " : "\n    ") << "{\"frame\": " << f << ", \"measured\": "
