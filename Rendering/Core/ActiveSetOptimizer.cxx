@@ -2,9 +2,7 @@
 #include "ActiveSetOptimizer.h"
 
 #include <algorithm>
-#include <array>
 #include <chrono>
-#include <climits>
 #include <cfloat>
 #include <cmath>
 #include <cstring>
@@ -154,11 +152,12 @@ void WithKind(double alpha, F&& f)
   }
 }
 
-// The O(n) passes of the multiplier search are written once over "lanes":
-// Lane1 (one double: the portable code, and the tail of every loop) and,
-// with SSE2, Lane2 (two doubles per instruction, branch-free: the bound tests
-// are data-dependent and mispredict half the time as branches, and divisions
-// and roots are what the passes spend). +, -, *, / work on both types.
+// The O(n) passes of the multiplier search are written once over "lanes"
+// (ActiveSetOptimizer.inl): Lane1 (one double: the portable code, and the
+// tail of every loop), Lane2 with SSE2 and Lane4 with AVX2 (two and four
+// doubles per instruction, branch-free: the bound tests are data-dependent
+// and mispredict half the time as branches, and divisions and roots are what
+// the passes spend). +, -, *, / work on every lane type.
 struct Lane1
 {
   using V = double;
@@ -325,6 +324,7 @@ struct BucketTable
   int Low = KeyBuckets, High = -1;
 };
 
+// The kernels for the build's own target: SSE2 on x86-64, else scalar.
 namespace base
 {
 #if defined(__SSE2__)
@@ -458,24 +458,6 @@ void ActiveSetOptimizer::Reserve(std::size_t n)
   {
     this->BucketCost.resize(MaxLanes * KeyBuckets);
   }
-}
-
-double ActiveSetOptimizer::Power(double x) const
-{
-  // gamma = 1 / (alpha + 1): 1/2, 1/3 and 2 for the eq. 10 families.
-  if (this->Alpha == 1.0)
-  {
-    return std::sqrt(x);
-  }
-  if (this->Alpha == 2.0)
-  {
-    return std::cbrt(x);
-  }
-  if (this->Alpha == -0.5)
-  {
-    return x * x;
-  }
-  return std::pow(x, this->Gamma);
 }
 
 bool ActiveSetOptimizer::TimeUp()
