@@ -403,7 +403,8 @@ template <class F>
 void WithLanes(F&& f)
 {
 #if defined(TIMECRITICAL_AVX2)
-  static const bool avx2 = __builtin_cpu_supports("avx2");
+  // cpu_init first: a solve may run from another library's static constructor.
+  static const bool avx2 = (__builtin_cpu_init(), __builtin_cpu_supports("avx2"));
   if (avx2)
   {
     f(avx2::Api());
