@@ -36,6 +36,7 @@ using timecritical::GreedyLODPolicy;
 using timecritical::ReferenceResolutionSolver;
 using timecritical::ResolutionProblem;
 using timecritical_test::MakeRandomProblem;
+using timecritical_test::NextFrame;
 using timecritical_test::RandomProblem;
 using Clock = std::chrono::steady_clock;
 
@@ -82,16 +83,6 @@ double Median(std::vector<double> v)
 double Gap(double f, double reference)
 {
   return (f - reference) / std::abs(reference);
-}
-
-/// One frame after a camera move: weights change by up to 10 %, the budget by up to 5 %.
-RandomProblem NextFrame(const RandomProblem& base, unsigned seed)
-{
-  RandomProblem p = base;
-  timecritical_test::Perturb(p, 0.10, seed);
-  const double s = 1.0 + 0.05 * std::sin(1.7 * seed);
-  p.Budget = p.CostAtMin() + s * (base.Budget - base.CostAtMin());
-  return p;
 }
 
 struct Row

@@ -110,6 +110,17 @@ inline void Perturb(RandomProblem& p, double amount, unsigned seed)
   }
 }
 
+/// The optimizer benchmark's frame-to-frame change (a camera move): weights
+/// by up to 10 %, the budget's free part by up to 5 % either way.
+inline RandomProblem NextFrame(const RandomProblem& base, unsigned seed)
+{
+  RandomProblem p = base;
+  Perturb(p, 0.10, seed);
+  const double s = 1.0 + 0.05 * std::sin(1.7 * seed);
+  p.Budget = p.CostAtMin() + s * (base.Budget - base.CostAtMin());
+  return p;
+}
+
 /// KKT conditions of eq. 11 checked from scratch (pow() on the raw inputs).
 struct KKTCheck
 {

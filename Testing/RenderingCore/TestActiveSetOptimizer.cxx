@@ -24,6 +24,7 @@ using timecritical::ReferenceResolutionSolver;
 using timecritical::ResolutionProblem;
 using timecritical_test::CheckKKT;
 using timecritical_test::MakeRandomProblem;
+using timecritical_test::NextFrame;
 using timecritical_test::RandomProblem;
 using Status = ActiveSetOptimizer::Status;
 
@@ -302,17 +303,6 @@ TEST(ActiveSetOptimizer, WarmStartReducesWork)
   RecordProperty("ColdSteps", std::to_string(coldSteps));
   std::cout << "steps warm " << warmSteps << " cold " << coldSteps << ", seconds warm "
             << warmSeconds << " cold " << coldSeconds << "\n";
-}
-
-/// The benchmark's frame to frame change: weights by up to 10 %, the budget's
-/// free part by up to 5 % either way.
-RandomProblem NextFrame(const RandomProblem& base, unsigned seed)
-{
-  RandomProblem p = base;
-  timecritical_test::Perturb(p, 0.10, seed);
-  const double s = 1.0 + 0.05 * std::sin(1.7 * seed);
-  p.Budget = p.CostAtMin() + s * (base.Budget - base.CostAtMin());
-  return p;
 }
 
 TEST(ActiveSetOptimizer, WarmFromTheOptimumReturnsItInOneStep)
