@@ -58,7 +58,9 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <map>
 #include <memory>
+#include <set>
 #include <stdexcept>
 #include <vector>
 
@@ -259,9 +261,8 @@ struct vtkMultiresolutionPolyDataMapper::Internals
   vtkMTimeType InputTime = 0;
   std::vector<std::pair<vtkSmartPointer<vtkDataObject>, vtkMTimeType>> Watched;
 
-  vtkNew<vtkTOMFieldData> Reader;
-  vtkNew<vtkMergeTreeFieldData> TreeReader;
   // TOM arrays of all TOM objects (leaf point ids); the traversals view them.
+  // Leaves that share their cells and TOMSubstitution arrays share one copy.
   std::vector<uint32_t> Substitution;
   std::vector<uint32_t> Triangles;
   // Surface triangles of the non-TOM objects (merged point ids, degenerate
@@ -478,10 +479,11 @@ void vtkMultiresolutionPolyDataMapper::ReadObjects(vtkDataObject* input)
   }
   in.Objects.clear();
   in.Watched.clear();
-  in.Substitution.clear();
-  in.Triangles.clear();
-  in.StaticTriangles.clear();
-  in.StaticTriangleCells.clear();
+  // Released, not cleared: they are sized for this input below.
+  std::vector<uint32_t>().swap(in.Substitution);
+  std::vector<uint32_t>().swap(in.Triangles);
+  std::vector<uint32_t>().swap(in.StaticTriangles);
+  std::vector<uint32_t>().swap(in.StaticTriangleCells);
   in.Merged = nullptr;
   in.LayoutValid = false; // other objects: the next render lays the index buffer out
   in.CompactValid = false;
@@ -527,6 +529,37 @@ void vtkMultiresolutionPolyDataMapper::ReadObjects(vtkDataObject* input)
     }
   }
 
+  // Locals: a reader keeps a copy of the last mesh it read.
+  vtkNew<vtkTOMFieldData> reader;
+  vtkNew<vtkMergeTreeFieldData> treeReader;
+
+  // A TOM's arrays are copied once per pair of (cells, TOMSubstitution) arrays
+  // (replicas of a mesh often share them), into vectors reserved for the
+  // leaves that carry TOM arrays: no growth slack. The leaves hold the arrays
+  // for this call, so their addresses are stable keys.
+  using TOMKey = std::pair<const void*, const void*>;
+  auto tomKey = [](vtkPolyData* poly)
+  {
+    return TOMKey(poly->GetPolys(),
+      poly->GetPointData()->GetAbstractArray(vtkTOMFieldData::SubstitutionArrayName()));
+  };
+  std::map<TOMKey, std::pair<size_t, size_t>> copied; // substitution and triangle starts
+  {
+    std::set<TOMKey> seen;
+    size_t substitution = 0;
+    size_t triangles = 0;
+    for (const auto& leaf : leaves)
+    {
+      if (vtkTOMFieldData::HasTOMArrays(leaf.first) && seen.insert(tomKey(leaf.first)).second)
+      {
+        substitution += static_cast<size_t>(leaf.first->GetNumberOfPoints());
+        triangles += 3 * static_cast<size_t>(leaf.first->GetNumberOfPolys());
+      }
+    }
+    in.Substitution.reserve(substitution);
+    in.Triangles.reserve(triangles);
+  }
+
   std::vector<vtkPolyData*> parts;
   vtkIdType vertexOffset = 0;
   vtkIdType polyOffset = 0;
@@ -567,16 +600,21 @@ void vtkMultiresolutionPolyDataMapper::ReadObjects(vtkDataObject* input)
     {
       poly->GetBounds(object.Bounds);
     }
-    object.IsTOM = in.Reader->Read(poly);
+    object.IsTOM = reader->Read(poly);
     if (object.IsTOM)
     {
-      const timecritical::TOMMesh& mesh = in.Reader->GetMesh();
-      object.SubstitutionStart = in.Substitution.size();
-      object.TriangleStart = in.Triangles.size() / 3;
+      const timecritical::TOMMesh& mesh = reader->GetMesh();
       object.BaseVertexCount = mesh.BaseVertexCount;
-      in.Substitution.insert(
-        in.Substitution.end(), mesh.Substitution.begin(), mesh.Substitution.end());
-      in.Triangles.insert(in.Triangles.end(), mesh.Triangles.begin(), mesh.Triangles.end());
+      auto found = copied.emplace(
+        tomKey(poly), std::make_pair(in.Substitution.size(), in.Triangles.size() / 3));
+      object.SubstitutionStart = found.first->second.first;
+      object.TriangleStart = found.first->second.second;
+      if (found.second)
+      {
+        in.Substitution.insert(
+          in.Substitution.end(), mesh.Substitution.begin(), mesh.Substitution.end());
+        in.Triangles.insert(in.Triangles.end(), mesh.Triangles.begin(), mesh.Triangles.end());
+      }
       object.NumberOfTriangles = mesh.GetNumberOfTriangles();
       object.Coarsest = object.NumberOfTriangles > 0
         ? static_cast<double>(mesh.BaseTriangleCount) / object.NumberOfTriangles
@@ -588,7 +626,7 @@ void vtkMultiresolutionPolyDataMapper::ReadObjects(vtkDataObject* input)
       {
         vtkWarningMacro("Block " << object.FlatIndex
                                  << " is not a valid TOM, rendering it at full resolution: "
-                                 << in.Reader->GetErrorMessage());
+                                 << reader->GetErrorMessage());
         in.WarnedNonTOM = true;
       }
       // Fan triangles in merged point ids, dropping those with coincident
@@ -625,10 +663,10 @@ void vtkMultiresolutionPolyDataMapper::ReadObjects(vtkDataObject* input)
     }
     if (object.IsTOM && vtkMergeTreeFieldData::HasMergeTreeArrays(poly))
     {
-      if (in.TreeReader->Read(poly))
+      if (treeReader->Read(poly))
       {
         // The refinement keeps its own copy of the points (float, as drawn).
-        const timecritical::MergeTree& tree = in.TreeReader->GetTree();
+        const timecritical::MergeTree& tree = treeReader->GetTree();
         const vtkIdType count = poly->GetNumberOfPoints();
         std::vector<float> xyz(3 * static_cast<size_t>(count));
         vtkDataArray* coordinates = poly->GetPoints()->GetData();
@@ -642,7 +680,7 @@ void vtkMultiresolutionPolyDataMapper::ReadObjects(vtkDataObject* input)
         try
         {
           object.Refinement = std::make_unique<timecritical::ViewDependentRefinement>();
-          object.Refinement->Initialize(in.TreeReader->GetMesh(), tree, xyz.data());
+          object.Refinement->Initialize(treeReader->GetMesh(), tree, xyz.data());
           object.Levels = tree.Level;
           object.LevelCount = tree.LevelCount;
         }
@@ -656,7 +694,7 @@ void vtkMultiresolutionPolyDataMapper::ReadObjects(vtkDataObject* input)
       else if (!in.WarnedBadTree)
       {
         vtkWarningMacro("Block " << object.FlatIndex << " has invalid merge-tree arrays, drawing it "
-                                 << "as a TOM: " << in.TreeReader->GetErrorMessage());
+                                 << "as a TOM: " << treeReader->GetErrorMessage());
         in.WarnedBadTree = true;
       }
     }
@@ -675,6 +713,11 @@ void vtkMultiresolutionPolyDataMapper::ReadObjects(vtkDataObject* input)
     in.Objects.push_back(std::move(object));
   }
   in.TotalVertices = vertexOffset;
+  // No-ops unless a leaf with TOM arrays was not valid; the static ones grew by push_back.
+  in.Substitution.shrink_to_fit();
+  in.Triangles.shrink_to_fit();
+  in.StaticTriangles.shrink_to_fit();
+  in.StaticTriangleCells.shrink_to_fit();
 
   // Views into the TOM arrays, now that they no longer move.
   for (auto& object : in.Objects)
