@@ -746,6 +746,15 @@ void vtkMultiresolutionPolyDataMapper::ReadObjects(vtkDataObject* input)
     in.Merged = vtkSmartPointer<vtkPolyData>::New();
     vtkNew<vtkAppendPolyData> append;
     append->ExecuteAppend(in.Merged, parts.data(), static_cast<int>(parts.size()));
+    // 32-bit ids halve the merged polygons (32 -> 16 bytes per triangle). They
+    // stay whole: hardware selection maps primitive ids through VTK's cell map
+    // of them, and non-TOM leaves are drawn from them. Not for a single leaf,
+    // whose arrays the shallow copy above shares with the input.
+    vtkCellArray* polys = in.Merged->GetPolys();
+    if (polys->IsStorage64Bit() && polys->CanConvertTo32BitStorage())
+    {
+      polys->ConvertTo32BitStorage();
+    }
   }
   in.PolyCellBase = in.Merged ? in.Merged->GetNumberOfVerts() + in.Merged->GetNumberOfLines() : 0;
   in.MergedHasOtherCells = in.Merged &&
