@@ -136,6 +136,7 @@ struct Settings
   /// Budget fronts refine nothing below their pixel threshold (a floor): 0
   /// lets the budget alone decide, 1 would cap them at the tau = 1 front.
   double BudgetTau = 0.0;
+  double RefinementLimit = -1.0; // < 0: the renderer's default
   int WarmupFrames = 3;
   int LoopLevels = 1;
   bool Rebuild = false;
@@ -165,6 +166,9 @@ void PrintUsage()
        "  --tau PX           pixel threshold of the fixed-accuracy policy (default 1)\n"
        "  --budget-tau PX    pixel threshold (floor) of the budget fronts (default 0: the\n"
        "                     budget alone decides; with 1 they stop at the tau=1 front)\n"
+       "  --refinement-limit S  refinement time limit per frame of the budget policy and\n"
+       "                     --mixed (vtkTimeCriticalRenderer::SetRefinementTimeLimit;\n"
+       "                     default: the renderer's)\n"
        "  --target S         target frame time of the budget policy and --mixed (default 0.1)\n"
        "  --warmup N         untimed frames at the first camera before each policy (default 3)\n"
        "  --loop N           Loop subdivisions of igea (default 1: ~1.07M triangles)\n"
@@ -246,6 +250,10 @@ Settings ParseArguments(int argc, char* argv[])
     else if (arg == "--budget-tau")
     {
       settings.BudgetTau = real(0.0);
+    }
+    else if (arg == "--refinement-limit")
+    {
+      settings.RefinementLimit = real(0.0);
     }
     else if (arg == "--target")
     {
@@ -953,6 +961,10 @@ PolicyRun ViewDependent::Run(const PolicyInfo& policy)
     tc->ViewDependentRefinementOn();
     tc->SetRefinementModeToBudget();
     tc->SetPixelThreshold(this->Options.BudgetTau);
+    if (this->Options.RefinementLimit >= 0.0)
+    {
+      tc->SetRefinementTimeLimit(this->Options.RefinementLimit);
+    }
     this->Use(tc);
     this->MoveTo(0);
     const Clock::time_point start = Clock::now();
@@ -1300,6 +1312,10 @@ MixedResult RunMixed(const Settings& settings, const LargeObject& object)
     tc->ViewDependentRefinementOn();
     tc->SetRefinementModeToBudget();
     tc->SetPixelThreshold(settings.BudgetTau);
+    if (settings.RefinementLimit >= 0.0)
+    {
+      tc->SetRefinementTimeLimit(settings.RefinementLimit);
+    }
     window->AddRenderer(tc);
     moveTo(tc, 0);
     Clock::time_point start = Clock::now();
@@ -1526,6 +1542,7 @@ void WriteJson(const Settings& settings, const LargeObject& object, const Object
   out << "{\n  \"benchmark\": \"ViewDependentBenchmark\",\n";
   out << "  \"settings\": {\"frames\": " << settings.Frames << ", \"tau\": " << Number(settings.Tau)
       << ", \"budget_tau\": " << Number(settings.BudgetTau)
+      << ", \"refinement_limit\": " << Number(settings.RefinementLimit)
       << ", \"target_frame_time\": " << Number(settings.Target) << ", \"quick\": "
       << (settings.Quick ? "true" : "false") << ", \"warmup_frames\": " << settings.WarmupFrames
       << ", \"loop_levels\": " << settings.LoopLevels << ", \"window\": [" << WindowSize << ", "
