@@ -3,6 +3,7 @@
 #define timecritical_MergeTree_h
 
 #include <cstdint>
+#include <cstring>
 #include <vector>
 
 namespace timecritical
@@ -25,6 +26,24 @@ namespace timecritical
  * everything merged into the parent up to that event); for a base vertex, its
  * whole subtree (the root node).
  */
+/// The smallest float not below x: radii and errors stored as float must stay
+/// upper bounds (the builder's and the refinement's widened nodes).
+inline float FloatNotBelow(double x)
+{
+  float f = static_cast<float>(x);
+  if (static_cast<double>(f) < x)
+  {
+    // The next float up (std::nextafter towards +inf, without the call: this
+    // runs twice per event at build time): one ulp more in magnitude above 0,
+    // less below.
+    uint32_t bits;
+    std::memcpy(&bits, &f, sizeof(bits));
+    bits = f == 0.0f ? 1u : (f > 0.0f ? bits + 1 : bits - 1);
+    std::memcpy(&f, &bits, sizeof(f));
+  }
+  return f;
+}
+
 struct MergeTree
 {
   /// Level of the independent set whose collapse removed v (0 = finest);

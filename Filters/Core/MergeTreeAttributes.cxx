@@ -243,22 +243,6 @@ struct alignas(16) Shade
 };
 static_assert(sizeof(Shade) == 16, "four vertices per cache line");
 
-/// Float not below x (radii and errors must stay upper bounds after storage).
-float RoundUp(double x)
-{
-  float f = static_cast<float>(x);
-  if (static_cast<double>(f) < x)
-  {
-    // The next float up (std::nextafter towards +inf, without the call: this
-    // runs twice per event): one ulp more in magnitude above 0, less below.
-    uint32_t bits;
-    std::memcpy(&bits, &f, sizeof(bits));
-    bits = f == 0.0f ? 1u : (f > 0.0f ? bits + 1 : bits - 1);
-    std::memcpy(&f, &bits, sizeof(f));
-  }
-  return f;
-}
-
 /// The shading error as a length (see MergeTreeErrorOptions), at most
 /// FLT_MAX: any weight is allowed, and a float error must stay finite.
 double ShadingLength(double weight, double radius, double deviation)
@@ -745,13 +729,13 @@ MergeTree Replay(const TOMMesh& tom, const double* points, const uint32_t* point
       // node's share of a squared image error does.
       shadingError = ShadingLength(shadingWeight, radius, deviation);
     }
-    tree.Radius[v] = RoundUp(radius);
+    tree.Radius[v] = FloatNotBelow(radius);
     StoreCone(tree, v, cu);
 
     // Monotone error and depth: e_v needs its previous sibling (the last child
     // merged into u), its own last child, and for each row vertex n the last
     // child merged into n; events needing e_v pushed onto it before.
-    float error = std::max(RoundUp(std::max(nodeError, shadingError)), nv.PushError);
+    float error = std::max(FloatNotBelow(std::max(nodeError, shadingError)), nv.PushError);
     uint32_t depth = nv.PushDepth; // saturated: see Node
     error = std::max(error, std::max(nu.ChildError, nv.ChildError));
     depth = std::max<uint32_t>(depth, std::max(nu.ChildDepth, nv.ChildDepth));
@@ -780,10 +764,10 @@ MergeTree Replay(const TOMMesh& tom, const double* points, const uint32_t* point
   // Roots bound their whole tree: their own node error and every child's.
   for (uint32_t w = 0; w < B; ++w)
   {
-    tree.Error[w] = std::max(RoundUp(std::max(node[w].Error,
+    tree.Error[w] = std::max(FloatNotBelow(std::max(node[w].Error,
                                ShadingLength(shadingWeight, node[w].Radius, shade[w].Deviation))),
       node[w].ChildError);
-    tree.Radius[w] = RoundUp(node[w].Radius);
+    tree.Radius[w] = FloatNotBelow(node[w].Radius);
     StoreCone(tree, w, cone[w]);
   }
 

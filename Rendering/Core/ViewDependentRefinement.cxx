@@ -395,10 +395,6 @@ void ViewDependentRefinement::MakePrioritiesMonotone()
 {
   constexpr double RadiusMargin = 1e-5;
   constexpr double AngleMargin = 1e-6;
-  auto atLeast = [](double x) {
-    float f = static_cast<float>(x);
-    return static_cast<double>(f) < x ? std::nextafter(f, std::numeric_limits<float>::infinity()) : f;
-  };
   auto angle = [](const Node& node) {
     return node.Cos <= -1.0f ? Pi : std::atan2(static_cast<double>(node.Sin), static_cast<double>(node.Cos));
   };
@@ -434,7 +430,7 @@ void ViewDependentRefinement::MakePrioritiesMonotone()
     const double radius = (std::sqrt(gap2) + s.Radius) * (1.0 + RadiusMargin);
     if (radius > d.Radius)
     {
-      d.Radius = atLeast(radius);
+      d.Radius = FloatNotBelow(radius);
     }
     if (d.Cos > -1.0f)
     {
