@@ -423,6 +423,25 @@ int Run(int argc, char** argv)
     f.CpuMedian = median(cpu);
     f.CpuMean = std::accumulate(cpu.begin(), cpu.end(), 0.0) / w2Frames;
   };
+  // One update, its wall time (the core's own) and CPU time recorded, under
+  // callgrind's instrumentation when asked.
+  auto timedUpdate = [](bool instrument, std::vector<double>& times, std::vector<double>& cpu,
+                       auto update) -> const RefinementStatistics& {
+    if (instrument)
+    {
+      CALLGRIND_START_INSTRUMENTATION;
+    }
+    const std::clock_t clock0 = std::clock();
+    const RefinementStatistics& s = update();
+    const std::clock_t clock1 = std::clock();
+    if (instrument)
+    {
+      CALLGRIND_STOP_INSTRUMENTATION;
+    }
+    times.push_back(s.Seconds);
+    cpu.push_back(double(clock1 - clock0) / CLOCKS_PER_SEC);
+    return s;
+  };
   auto runW2 = [&](double timeLimit, bool instrument) {
     uint64_t state = 12345;
     auto uniform = [&state]() {
@@ -451,19 +470,10 @@ int Run(int argc, char** argv)
         budget *= uniform() < 0.5 ? 1.0 - change : 1.0 + change;
         budget = std::min(highBudget, std::max(lowBudget, budget));
         vdr.SetView(w2View(angle, zoom));
-        if (instrument)
-        {
-          CALLGRIND_START_INSTRUMENTATION;
-        }
-        const std::clock_t clock0 = std::clock();
-        const RefinementStatistics& s = vdr.UpdateBudget(uint32_t(budget), timeLimit);
-        const std::clock_t clock1 = std::clock();
-        if (instrument)
-        {
-          CALLGRIND_STOP_INSTRUMENTATION;
-        }
-        times.push_back(s.Seconds);
-        cpu.push_back(double(clock1 - clock0) / CLOCKS_PER_SEC);
+        const RefinementStatistics& s = timedUpdate(instrument, times, cpu,
+          [&]() -> const RefinementStatistics& {
+            return vdr.UpdateBudget(uint32_t(budget), timeLimit);
+          });
         f.Triangles += s.DisplayTriangles;
         f.Operations += s.Splits + s.Merges;
         f.Lag += std::abs(double(s.DisplayTriangles) - budget) / budget;
@@ -510,19 +520,8 @@ int Run(int argc, char** argv)
         uniform(); // the budget draws of runW2: same camera path
         uniform();
         vdr.SetView(w2View(angle, zoom));
-        if (instrument)
-        {
-          CALLGRIND_START_INSTRUMENTATION;
-        }
-        const std::clock_t clock0 = std::clock();
-        const RefinementStatistics& s = vdr.UpdateFixedAccuracy();
-        const std::clock_t clock1 = std::clock();
-        if (instrument)
-        {
-          CALLGRIND_STOP_INSTRUMENTATION;
-        }
-        times.push_back(s.Seconds);
-        cpu.push_back(double(clock1 - clock0) / CLOCKS_PER_SEC);
+        const RefinementStatistics& s = timedUpdate(instrument, times, cpu,
+          [&]() -> const RefinementStatistics& { return vdr.UpdateFixedAccuracy(); });
         f.Triangles += s.DisplayTriangles;
         f.Operations += s.Splits + s.Merges;
       }
