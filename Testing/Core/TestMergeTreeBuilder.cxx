@@ -409,21 +409,7 @@ TEST(MergeTreeBuilder, WorkStaysLinearOnACrumpledFan)
 {
   // 16,000 triangles around one vertex, the others scattered over a sphere:
   // most collapses of the hub are illegal (see TOMBuilder's test).
-  TriangleMesh fan;
-  fan.Points = { 0, 0, 0 };
-  uint64_t state = 12345;
-  auto random = [&state]() {
-    state = state * 6364136223846793005ull + 1442695040888963407ull;
-    return double(state >> 11) / double(uint64_t(1) << 53);
-  };
-  const uint32_t n = 16000;
-  for (uint32_t i = 0; i < n; ++i)
-  {
-    const double z = 2 * random() - 1, a = 6.283185307179586 * random();
-    const double r = std::sqrt(1 - z * z);
-    fan.Points.insert(fan.Points.end(), { r * std::cos(a), r * std::sin(a), z });
-    fan.Triangles.insert(fan.Triangles.end(), { 0, 1 + i, 1 + (i + 1) % n });
-  }
+  const TriangleMesh fan = timecritical::testing::MakeFan(16000, true);
   const MergeTreeBuildResult r = Build(fan);
   ExpectValidMergeTree(fan, r);
   EXPECT_LT(r.TOM.FanTrianglesVisited, 4000u * fan.NumberOfTriangles());

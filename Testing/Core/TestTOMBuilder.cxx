@@ -920,29 +920,6 @@ TriangleMesh CoincidentCopies(size_t copies)
   }
   return mesh;
 }
-
-/// n triangles around point 0, their other corners on a circle (flat) or
-/// scattered over the unit sphere (crumpled: neighbours far apart, most
-/// collapses fold something).
-TriangleMesh Fan(uint32_t n, bool crumpled)
-{
-  TriangleMesh mesh;
-  mesh.Points = { 0, 0, 0 };
-  uint64_t state = 12345;
-  auto random = [&state]() {
-    state = state * 6364136223846793005ull + 1442695040888963407ull;
-    return double(state >> 11) / double(uint64_t(1) << 53);
-  };
-  for (uint32_t i = 0; i < n; ++i)
-  {
-    const double z = crumpled ? 2 * random() - 1 : 0.0;
-    const double a = crumpled ? 2 * Pi * random() : 2 * Pi * i / n;
-    const double r = std::sqrt(1 - z * z);
-    mesh.Points.insert(mesh.Points.end(), { r * std::cos(a), r * std::sin(a), z });
-    mesh.Triangles.insert(mesh.Triangles.end(), { 0, 1 + i, 1 + (i + 1) % n });
-  }
-  return mesh;
-}
 }
 
 TEST(TOMBuilder, CoincidentCopiesGiveTheTOMOfOneCopy)
@@ -966,14 +943,14 @@ TEST(TOMBuilder, WorkStaysLinearOnHugeFans)
   // walked the hub's whole fan each time (4,000 triangles took 20 s, 16,000
   // did not finish). The work counter, not the time, is the measure: 30 to
   // 45 per triangle on real meshes; the bound on fans keeps it linear here.
-  const TriangleMesh flat = Fan(100000, false);
+  const TriangleMesh flat = timecritical::testing::MakeFan(100000, false);
   const TOMBuildResult r = Build(flat);
   ExpectValidResult(flat, r);
   EXPECT_LE(r.Mesh.BaseVertexCount, 4u);
   EXPECT_LT(r.FanTrianglesVisited, 100u * flat.NumberOfTriangles());
   for (uint32_t n : { 4000u, 16000u })
   {
-    const TriangleMesh crumpled = Fan(n, true);
+    const TriangleMesh crumpled = timecritical::testing::MakeFan(n, true);
     const TOMBuildResult c = Build(crumpled);
     ExpectValidResult(crumpled, c);
     EXPECT_LT(c.FanTrianglesVisited, 4000u * crumpled.NumberOfTriangles()) << n;

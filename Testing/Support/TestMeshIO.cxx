@@ -1777,6 +1777,28 @@ TriangleMesh MakeUVSphere(std::size_t latitudes, std::size_t longitudes)
 }
 
 //------------------------------------------------------------------------------
+TriangleMesh MakeFan(uint32_t n, bool crumpled)
+{
+  Require(n >= 3, "MakeFan: n must be >= 3");
+  constexpr double TwoPi = 6.283185307179586;
+  TriangleMesh mesh;
+  mesh.Points = { 0, 0, 0 };
+  uint64_t state = 12345;
+  auto random = [&state]() {
+    state = state * 6364136223846793005ull + 1442695040888963407ull;
+    return double(state >> 11) / double(uint64_t(1) << 53);
+  };
+  for (uint32_t i = 0; i < n; ++i)
+  {
+    const double z = crumpled ? 2 * random() - 1 : 0.0;
+    const double a = crumpled ? TwoPi * random() : TwoPi * i / n;
+    const double r = std::sqrt(1 - z * z);
+    mesh.Points.insert(mesh.Points.end(), { r * std::cos(a), r * std::sin(a), z });
+    mesh.Triangles.insert(mesh.Triangles.end(), { 0, 1 + i, 1 + (i + 1) % n });
+  }
+  return mesh;
+}
+
 TriangleMesh MakeTorus(std::size_t n, std::size_t m, uint32_t noiseSeed, double noiseAmplitude)
 {
   Require(n >= 3 && m >= 3, "MakeTorus: n and m must be >= 3");

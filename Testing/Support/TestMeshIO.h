@@ -184,6 +184,12 @@ TriangleMesh MakeTorus(
 /// the 12 cube edges are sharp 90-degree creases of a single closed surface:
 /// 6 n^2 + 2 points, 12 n^2 triangles, Euler characteristic 2. Requires n >= 1.
 TriangleMesh MakeCube(std::size_t n);
+
+/// n triangles around point 0, their other corners on the unit circle (flat)
+/// or scattered over the unit sphere by a fixed pseudo-random sequence
+/// (crumpled: neighbours far apart, most collapses fold something): the
+/// builders' work-bound tests. Requires n >= 3.
+TriangleMesh MakeFan(uint32_t n, bool crumpled);
 }
 }
 
