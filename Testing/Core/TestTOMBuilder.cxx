@@ -900,8 +900,6 @@ TEST(TOMBuilder, DuplicatePointsAndDuplicateTriangles)
 
 namespace
 {
-constexpr double Pi = 3.14159265358979323846;
-
 /// `copies` copies of a 64-triangle sphere on the same points (what appending
 /// coincident copies and merging points gives), every other one reversed.
 TriangleMesh CoincidentCopies(size_t copies)
