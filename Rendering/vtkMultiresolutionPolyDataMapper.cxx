@@ -51,6 +51,8 @@
 #include "vtkTextureObject.h"
 #include "vtkTypeInt32Array.h"
 #include "vtkTypeInt64Array.h"
+#include "vtkIdTypeArray.h"
+#include "vtkUnsignedIntArray.h"
 #include "vtkUnsignedCharArray.h"
 
 #include "vtk_glew.h"
@@ -213,6 +215,15 @@ struct vtkMultiresolutionPolyDataMapper::Internals
   {
     unsigned int FlatIndex = 0;
     bool IsTOM = false;
+    vtkPolyData* Leaf = nullptr; // held by Input (polydata) or Watched (composite)
+    // Its cells by type, and the first of them among all leaves' cells of
+    // that type (VTK's cell order: verts, lines, polys, strips).
+    vtkIdType NumberOfVerts = 0;
+    vtkIdType NumberOfLines = 0;
+    vtkIdType NumberOfStrips = 0;
+    vtkIdType VertOffset = 0;
+    vtkIdType LineOffset = 0;
+    vtkIdType StripOffset = 0;
     timecritical::TOMTraversal Traversal;
     size_t SubstitutionStart = 0; // into Substitution (TOM only)
     size_t TriangleStart = 0;     // into Triangles (TOM) or StaticTriangles (others), in triangles
@@ -333,6 +344,11 @@ struct vtkMultiresolutionPolyDataMapper::Internals
   bool WarnedNonPolyData = false;
   vtkIdType VertexBufferBuildCount = 0;
   vtkIdType IndexBufferBuildCount = 0;
+
+  // Hardware selection: which object drew a primitive or vertex, and its leaf's ids.
+  struct Selection;
+  const Object* ObjectOfVertex(vtkIdType vertex) const;
+  const Object* ObjectOfMergedCell(vtkIdType cell, vtkIdType& leafCell) const;
 
   Content Describe(const Object& object, bool viewDependent) const;
   size_t Stage(Object& object, const Content& content);
@@ -564,7 +580,10 @@ void vtkMultiresolutionPolyDataMapper::ReadObjects(vtkDataObject* input)
 
   std::vector<vtkPolyData*> parts;
   vtkIdType vertexOffset = 0;
+  vtkIdType vertOffset = 0;
+  vtkIdType lineOffset = 0;
   vtkIdType polyOffset = 0;
+  vtkIdType stripOffset = 0;
   in.MaxObjectTriangles = 0;
   in.MaxSurfaceIndices = in.MaxWireIndices = in.MaxPointIndices = 0;
   for (const auto& leaf : leaves)
@@ -589,6 +608,13 @@ void vtkMultiresolutionPolyDataMapper::ReadObjects(vtkDataObject* input)
     }
     Internals::Object object;
     object.FlatIndex = leaf.second;
+    object.Leaf = poly;
+    object.NumberOfVerts = poly->GetNumberOfVerts();
+    object.NumberOfLines = poly->GetNumberOfLines();
+    object.NumberOfStrips = poly->GetNumberOfStrips();
+    object.VertOffset = vertOffset;
+    object.LineOffset = lineOffset;
+    object.StripOffset = stripOffset;
     object.VertexOffset = vertexOffset;
     object.NumberOfVertices = poly->GetNumberOfPoints();
     object.PolyOffset = polyOffset;
@@ -710,7 +736,10 @@ void vtkMultiresolutionPolyDataMapper::ReadObjects(vtkDataObject* input)
     const size_t index = in.Objects.size();
     object.Resolution = index < previous.size() ? previous[index] : 1.0;
     vertexOffset += object.NumberOfVertices;
+    vertOffset += object.NumberOfVerts;
+    lineOffset += object.NumberOfLines;
     polyOffset += object.NumberOfPolys;
+    stripOffset += object.NumberOfStrips;
     parts.push_back(poly);
     in.Objects.push_back(std::move(object));
   }
@@ -1204,7 +1233,12 @@ void vtkMultiresolutionPolyDataMapper::RenderPiece(vtkRenderer* ren, vtkActor* a
     return;
   }
 
-  this->RefineObjects(ren, act);
+  // Selection passes draw what the last frame drew: fronts and slots must not
+  // change between the passes, whose ids are decoded against the slots.
+  if (!ren->GetSelector())
+  {
+    this->RefineObjects(ren, act);
+  }
   this->NumberOfRewrittenObjects = 0;
   this->IndexBytesUploaded = 0;
   this->CellDataBytesUploaded = 0;
@@ -1442,7 +1476,9 @@ bool vtkMultiresolutionPolyDataMapper::GetNeedToRebuildBufferObjects(
 {
   Internals& in = *this->Internal;
   const bool all = this->Superclass::GetNeedToRebuildBufferObjects(ren, act);
-  const bool indices = in.UploadedVersion != in.ResolutionVersion;
+  // Resolutions changed during selection passes wait for the next frame (see RenderPiece).
+  const bool indices = in.UploadedVersion != in.ResolutionVersion &&
+    (!ren->GetSelector() || !in.LayoutValid);
   in.OnlyIndicesChanged = !all && indices;
   return all || indices;
 }
@@ -2471,6 +2507,405 @@ void vtkMultiresolutionPolyDataMapper::UploadResolutionColors()
   for (auto& object : in.Objects)
   {
     object.ColorDirty = false;
+  }
+}
+
+
+//------------------------------------------------------------------------------
+// Hardware selection. vtkHardwareSelector renders the actor once per pass; the
+// superclass writes gl_PrimitiveID (plus the primitives drawn before) in the
+// cell passes, gl_VertexID in the point passes and 1 in the composite pass.
+// Here a primitive id becomes the object whose slot holds it and the leaf cell
+// that Emit wrote there (the cell textures' mapping), a vertex the object whose
+// vertex range holds it; the composite pass, processed again in the selector's
+// second iteration when the cell (or point) ids of the first are known,
+// becomes the object's flat index.
+
+namespace
+{
+unsigned int ReadPixelId(const unsigned char* low, const unsigned char* high, unsigned int pos)
+{
+  unsigned int id = low[pos] | (static_cast<unsigned int>(low[pos + 1]) << 8) |
+    (static_cast<unsigned int>(low[pos + 2]) << 16);
+  if (high)
+  {
+    id |= static_cast<unsigned int>(high[pos]) << 24;
+  }
+  return id;
+}
+
+/// Bits [shift, shift + 24) of id as the selector's RGB.
+void WritePixelId(unsigned char* out, unsigned int pos, vtkIdType id, int shift)
+{
+  const auto value = static_cast<uint64_t>(id) >> shift;
+  out[pos] = static_cast<unsigned char>(value & 0xff);
+  out[pos + 1] = static_cast<unsigned char>((value >> 8) & 0xff);
+  out[pos + 2] = static_cast<unsigned char>((value >> 16) & 0xff);
+}
+}
+
+const vtkMultiresolutionPolyDataMapper::Internals::Object*
+vtkMultiresolutionPolyDataMapper::Internals::ObjectOfVertex(vtkIdType vertex) const
+{
+  // Objects are in vertex order; the last one starting at or before the vertex.
+  auto it = std::upper_bound(this->Objects.begin(), this->Objects.end(), vertex,
+    [](vtkIdType v, const Object& o) { return v < o.VertexOffset; });
+  if (it == this->Objects.begin())
+  {
+    return nullptr;
+  }
+  --it;
+  return vertex < it->VertexOffset + it->NumberOfVertices ? &*it : nullptr;
+}
+
+const vtkMultiresolutionPolyDataMapper::Internals::Object*
+vtkMultiresolutionPolyDataMapper::Internals::ObjectOfMergedCell(
+  vtkIdType cell, vtkIdType& leafCell) const
+{
+  // Cells of all leaves in VTK's order: every leaf's verts, then lines,
+  // polys and strips; a leaf numbers its own cells in the same type order.
+  const Object* last = this->Objects.empty() ? nullptr : &this->Objects.back();
+  if (!last || cell < 0)
+  {
+    return nullptr;
+  }
+  const vtkIdType verts = last->VertOffset + last->NumberOfVerts;
+  const vtkIdType lines = last->LineOffset + last->NumberOfLines;
+  const vtkIdType polys = last->PolyOffset + last->NumberOfPolys;
+  const vtkIdType strips = last->StripOffset + last->NumberOfStrips;
+  int type = 0;
+  vtkIdType index = cell;
+  for (const vtkIdType count : { verts, lines, polys })
+  {
+    if (index < count)
+    {
+      break;
+    }
+    index -= count;
+    ++type;
+  }
+  if (type == 3 && index >= strips)
+  {
+    return nullptr;
+  }
+  auto first = [type](const Object& o)
+  { return type == 0 ? o.VertOffset : type == 1 ? o.LineOffset : type == 2 ? o.PolyOffset : o.StripOffset; };
+  auto count = [type](const Object& o)
+  {
+    return type == 0 ? o.NumberOfVerts
+                     : type == 1 ? o.NumberOfLines : type == 2 ? o.NumberOfPolys : o.NumberOfStrips;
+  };
+  auto it = std::upper_bound(this->Objects.begin(), this->Objects.end(), index,
+    [&](vtkIdType i, const Object& o) { return i < first(o); });
+  // Objects without cells of this type share their first with the next one.
+  while (it != this->Objects.begin())
+  {
+    --it;
+    if (index < first(*it) + count(*it))
+    {
+      const vtkIdType before = type == 0 ? 0
+        : type == 1                     ? it->NumberOfVerts
+        : type == 2                     ? it->NumberOfVerts + it->NumberOfLines
+                                        : it->NumberOfVerts + it->NumberOfLines + it->NumberOfPolys;
+      leafCell = before + index - first(*it);
+      return &*it;
+    }
+    if (count(*it) > 0)
+    {
+      break;
+    }
+  }
+  return nullptr;
+}
+
+/// The state of one ProcessSelectorPixelBuffers call: objects by slot, and
+/// (points representation) the drawn triangle that first uses each vertex.
+struct vtkMultiresolutionPolyDataMapper::Internals::Selection
+{
+  explicit Selection(const Internals& in)
+    : In(in)
+  {
+    for (size_t i = 0; i < in.Objects.size(); ++i)
+    {
+      if (in.Objects[i].SlotUsed > 0)
+      {
+        this->BySlot.push_back(static_cast<uint32_t>(i));
+      }
+    }
+    std::sort(this->BySlot.begin(), this->BySlot.end(), [&in](uint32_t a, uint32_t b)
+      { return in.Objects[a].SlotStart < in.Objects[b].SlotStart; });
+  }
+
+  /// Object and leaf cell of primitive p of the triangle index buffer.
+  const Object* Decode(size_t p, vtkIdType& leafCell)
+  {
+    const Internals& in = this->In;
+    auto it = std::upper_bound(this->BySlot.begin(), this->BySlot.end(), p,
+      [&in](size_t q, uint32_t i) { return q < in.Objects[i].SlotStart; });
+    if (it == this->BySlot.begin())
+    {
+      return nullptr;
+    }
+    const size_t index = *std::prev(it);
+    const Object& object = in.Objects[index];
+    const size_t k = p - object.SlotStart;
+    if (k >= object.SlotUsed)
+    {
+      return nullptr; // padding: degenerate, never drawn
+    }
+    const vtkIdType polyBase = object.NumberOfVerts + object.NumberOfLines;
+    const size_t perTriangle = in.Representation == VTK_SURFACE ? 1 : 3;
+    const bool vertices = in.Representation == VTK_POINTS && !in.Corners;
+    switch (object.Written.Kind)
+    {
+      case ContentKind::Front:
+        if (vertices)
+        {
+          leafCell = polyBase + this->VertexCell(index, k);
+        }
+        else
+        {
+          leafCell = polyBase + object.Refinement->GetTriangleIds()[k / perTriangle];
+        }
+        return &object;
+      case ContentKind::Prefix:
+        // TOM triangle t is cell t of the leaf's polygons.
+        leafCell = polyBase + (vertices ? this->VertexCell(index, k) : k / perTriangle);
+        return &object;
+      case ContentKind::Whole:
+        if (in.Representation == VTK_SURFACE)
+        {
+          leafCell = polyBase + in.StaticTriangleCells[object.TriangleStart + k];
+        }
+        else
+        {
+          // One primitive per polygon corner, as Emit writes them.
+          vtkCellArray* polys = object.Leaf->GetPolys();
+          vtkIdType c = 0;
+          for (vtkIdType lo = 0, hi = object.NumberOfPolys - 1; lo <= hi;)
+          {
+            const vtkIdType mid = (lo + hi) / 2;
+            if (polys->GetOffsetsArray()->GetComponent(mid, 0) <= static_cast<double>(k))
+            {
+              c = mid;
+              lo = mid + 1;
+            }
+            else
+            {
+              hi = mid - 1;
+            }
+          }
+          leafCell = polyBase + c;
+        }
+        return &object;
+      default:
+        return nullptr;
+    }
+  }
+
+  /// Points representation: the leaf polygon of the first drawn triangle
+  /// that uses the k-th vertex of the object's slot.
+  vtkIdType VertexCell(size_t index, size_t k)
+  {
+    const Object& object = this->In.Objects[index];
+    std::vector<int64_t>& cells = this->VertexCells[index];
+    std::vector<uint32_t>& order = this->SlotVertices[index];
+    if (cells.empty())
+    {
+      cells.assign(static_cast<size_t>(object.NumberOfVertices), -1);
+      std::vector<uint32_t> triangles;
+      const uint32_t* ids = nullptr;
+      size_t count = 0;
+      if (object.Written.Kind == ContentKind::Front)
+      {
+        const timecritical::ViewDependentRefinement& front = *object.Refinement;
+        count = front.GetNumberOfDisplayTriangles();
+        triangles.assign(front.GetTriangles(), front.GetTriangles() + 3 * count);
+        ids = front.GetTriangleIds();
+        for (uint32_t v = 0; v < front.GetNumberOfVertices(); ++v)
+        {
+          if (front.IsDisplayVertex(v))
+          {
+            order.push_back(v);
+          }
+        }
+      }
+      else
+      {
+        const auto vertexCount = static_cast<uint32_t>(object.Written.Key);
+        count = object.Traversal.Extract(vertexCount, triangles);
+        for (uint32_t v = 0; v < vertexCount; ++v)
+        {
+          order.push_back(v);
+        }
+      }
+      for (size_t t = count; t-- > 0;)
+      {
+        for (int c = 0; c < 3; ++c)
+        {
+          cells[triangles[3 * t + c]] = ids ? ids[t] : static_cast<int64_t>(t);
+        }
+      }
+    }
+    const uint32_t vertex = k < order.size() ? order[k] : 0;
+    return std::max<int64_t>(cells[vertex], 0);
+  }
+
+  const Internals& In;
+  std::vector<uint32_t> BySlot;
+  std::map<size_t, std::vector<int64_t>> VertexCells;
+  std::map<size_t, std::vector<uint32_t>> SlotVertices;
+};
+
+void vtkMultiresolutionPolyDataMapper::UpdateMaximumPointCellIds(vtkRenderer* ren, vtkActor* act)
+{
+  // The superclass bounds the primitive ids drawn; the ids reported are the
+  // leaves' own, which can be larger (a large leaf drawn coarse).
+  this->Superclass::UpdateMaximumPointCellIds(ren, act);
+  vtkHardwareSelector* selector = ren->GetSelector();
+  for (const auto& object : this->Internal->Objects)
+  {
+    selector->UpdateMaximumPointId(object.NumberOfVertices - 1);
+    selector->UpdateMaximumCellId(object.Leaf->GetNumberOfCells() - 1);
+    vtkIdTypeArray* ids = this->PointIdArrayName
+      ? vtkArrayDownCast<vtkIdTypeArray>(object.Leaf->GetPointData()->GetArray(this->PointIdArrayName))
+      : nullptr;
+    if (ids)
+    {
+      selector->UpdateMaximumPointId(static_cast<vtkIdType>(ids->GetRange()[1]));
+    }
+    ids = this->CellIdArrayName
+      ? vtkArrayDownCast<vtkIdTypeArray>(object.Leaf->GetCellData()->GetArray(this->CellIdArrayName))
+      : nullptr;
+    if (ids)
+    {
+      selector->UpdateMaximumCellId(static_cast<vtkIdType>(ids->GetRange()[1]));
+    }
+  }
+}
+
+void vtkMultiresolutionPolyDataMapper::ProcessSelectorPixelBuffers(
+  vtkHardwareSelector* sel, std::vector<unsigned int>& pixeloffsets, vtkProp* prop)
+{
+  Internals& in = *this->Internal;
+  if (!this->PopulateSelectionSettings || !this->CurrentInput || in.Objects.empty())
+  {
+    return;
+  }
+  const int pass = sel->GetCurrentPass();
+  if (pass == vtkHardwareSelector::PROCESS_PASS)
+  {
+    this->Superclass::ProcessSelectorPixelBuffers(sel, pixeloffsets, prop);
+    return;
+  }
+  const bool pointField = sel->GetFieldAssociation() == vtkDataObject::FIELD_ASSOCIATION_POINTS;
+  const unsigned char* pointLow = sel->GetRawPixelBuffer(vtkHardwareSelector::POINT_ID_LOW24);
+  const unsigned char* pointHigh = sel->GetRawPixelBuffer(vtkHardwareSelector::POINT_ID_HIGH24);
+  const unsigned char* cellLow = sel->GetRawPixelBuffer(vtkHardwareSelector::CELL_ID_LOW24);
+  const unsigned char* cellHigh = sel->GetRawPixelBuffer(vtkHardwareSelector::CELL_ID_HIGH24);
+
+  // Primitive ids of the triangle index buffer start after the vertices and
+  // lines of non-TOM leaves, drawn first (PrimitiveIDOffset).
+  vtkCellArray* prims[4] = { this->CurrentInput->GetVerts(), this->CurrentInput->GetLines(),
+    this->CurrentInput->GetPolys(), this->CurrentInput->GetStrips() };
+  const int representation = static_cast<vtkActor*>(prop)->GetProperty()->GetRepresentation();
+  if (in.MergedHasOtherCells)
+  {
+    this->CellCellMap->Update(prims, representation, this->CurrentInput->GetPoints());
+  }
+  const size_t triBase =
+    in.MergedHasOtherCells ? static_cast<size_t>(this->CellCellMap->GetPrimitiveOffsets()[2]) : 0;
+  Internals::Selection selection(in);
+  auto cellHit = [&](unsigned int pos, vtkIdType& leafCell) -> const Internals::Object*
+  {
+    const size_t raw = ReadPixelId(cellLow, cellHigh, pos);
+    if (in.LayoutValid && raw >= triBase && raw < triBase + in.Tail)
+    {
+      return selection.Decode(raw - triBase, leafCell);
+    }
+    if (!in.MergedHasOtherCells)
+    {
+      return nullptr;
+    }
+    const vtkIdType merged =
+      this->CellCellMap->ConvertOpenGLCellIdToVTKCellId(false, static_cast<vtkIdType>(raw));
+    return in.ObjectOfMergedCell(merged, leafCell);
+  };
+
+  if ((pass == vtkHardwareSelector::POINT_ID_LOW24 ||
+        pass == vtkHardwareSelector::POINT_ID_HIGH24) &&
+    pointLow && (pass == vtkHardwareSelector::POINT_ID_LOW24 || pointHigh))
+  {
+    unsigned char* out = sel->GetPixelBuffer(pass);
+    for (const unsigned int pos : pixeloffsets)
+    {
+      const vtkIdType vertex = ReadPixelId(pointLow, pointHigh, pos);
+      const Internals::Object* object = in.ObjectOfVertex(vertex);
+      if (!out || !object)
+      {
+        continue;
+      }
+      vtkIdType id = vertex - object->VertexOffset;
+      vtkIdTypeArray* ids = this->PointIdArrayName
+        ? vtkArrayDownCast<vtkIdTypeArray>(object->Leaf->GetPointData()->GetArray(this->PointIdArrayName))
+        : nullptr;
+      if (ids && id < ids->GetNumberOfTuples())
+      {
+        id = ids->GetValue(id);
+      }
+      WritePixelId(out, pos, id, pass == vtkHardwareSelector::POINT_ID_LOW24 ? 0 : 24);
+    }
+  }
+
+  if ((pass == vtkHardwareSelector::CELL_ID_LOW24 || pass == vtkHardwareSelector::CELL_ID_HIGH24) &&
+    !pointField && cellLow && (pass == vtkHardwareSelector::CELL_ID_LOW24 || cellHigh))
+  {
+    unsigned char* out = sel->GetPixelBuffer(pass);
+    for (const unsigned int pos : pixeloffsets)
+    {
+      vtkIdType id = 0;
+      const Internals::Object* object = cellHit(pos, id);
+      if (!out || !object)
+      {
+        continue;
+      }
+      vtkIdTypeArray* ids = this->CellIdArrayName
+        ? vtkArrayDownCast<vtkIdTypeArray>(object->Leaf->GetCellData()->GetArray(this->CellIdArrayName))
+        : nullptr;
+      if (ids && id < ids->GetNumberOfTuples())
+      {
+        id = ids->GetValue(id);
+      }
+      WritePixelId(out, pos, id, pass == vtkHardwareSelector::CELL_ID_LOW24 ? 0 : 24);
+    }
+  }
+
+  // Polydata input keeps the superclass's composite value.
+  if (pass == vtkHardwareSelector::COMPOSITE_INDEX_PASS &&
+    vtkCompositeDataSet::SafeDownCast(in.Input) && (pointField ? pointLow : cellLow))
+  {
+    unsigned char* out = sel->GetPixelBuffer(pass);
+    for (const unsigned int pos : pixeloffsets)
+    {
+      vtkIdType cell = -1;
+      const Internals::Object* object = pointField
+        ? in.ObjectOfVertex(ReadPixelId(pointLow, pointHigh, pos))
+        : cellHit(pos, cell);
+      if (!out || !object)
+      {
+        continue;
+      }
+      vtkIdType value = object->FlatIndex;
+      vtkUnsignedIntArray* values = this->CompositeIdArrayName && cell >= 0
+        ? vtkArrayDownCast<vtkUnsignedIntArray>(
+            object->Leaf->GetCellData()->GetArray(this->CompositeIdArrayName))
+        : nullptr;
+      if (values && cell < values->GetNumberOfTuples())
+      {
+        value = values->GetValue(cell);
+      }
+      WritePixelId(out, pos, value, 0);
+    }
   }
 }
 

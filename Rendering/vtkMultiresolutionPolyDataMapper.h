@@ -63,10 +63,16 @@
  * per mapper; their vertices, lines and strips are always drawn in full (in
  * extra draw calls, whatever their resolution) and edge flags are ignored.
  *
- * Limitations: hardware selection (vtkHardwareSelector, area picking) sees
- * one block and primitive ids of the drawn triangles, so its cell ids are
- * wrong below full resolution; use vtkCellPicker. Its point passes draw the
- * padding as points at the first vertex of an object (possibly a culled one).
+ * Hardware selection (vtkHardwareSelector, ParaView's area selection)
+ * reports each leaf's flat index (composite input) and the leaf's own cell
+ * and point ids of what the last frame drew, at any resolution and for
+ * view-dependent fronts: selection passes neither refine fronts nor apply
+ * resolution changes, so that every pass draws, and is decoded against, the
+ * same slots. In the points representation a cell selection reports, for
+ * each drawn vertex, the first drawn triangle that uses it.
+ *
+ * Limitations: selection's point passes draw the padding as points at the
+ * first vertex of an object (possibly a culled one).
  * Points have no degenerate form: in the points representation slots fit
  * exactly and a change of any object's point count lays the buffer out
  * again. The merged leaves are a second copy of the input's points and arrays
@@ -83,6 +89,7 @@
 #include "vtkOpenGLPolyDataMapper.h"
 
 #include <memory> // for std::unique_ptr
+#include <vector> // for ProcessSelectorPixelBuffers
 
 class TIMECRITICALRENDERING_EXPORT vtkMultiresolutionPolyDataMapper : public vtkOpenGLPolyDataMapper
 {
@@ -313,6 +320,17 @@ protected:
   void BuildIBO(vtkRenderer* ren, vtkActor* act, vtkPolyData* poly) override;
   void BuildCellTextures(
     vtkRenderer* ren, vtkActor* act, vtkCellArray* prims[4], int representation) override;
+
+  ///@{
+  /**
+   * Hardware selection: the cell passes draw primitive ids of the index
+   * buffer's slots and the composite pass one value for all leaves; these
+   * turn them into each leaf's flat index and its own cell and point ids.
+   */
+  void ProcessSelectorPixelBuffers(
+    vtkHardwareSelector* sel, std::vector<unsigned int>& pixeloffsets, vtkProp* prop) override;
+  void UpdateMaximumPointCellIds(vtkRenderer* ren, vtkActor* act) override;
+  ///@}
 
   vtkIdType RenderedTriangles = 0;
   vtkIdType RenderedVertices = 0;

@@ -27,6 +27,8 @@
 #include "vtkCellData.h"
 #include "vtkCellPicker.h"
 #include "vtkCompositeDataIterator.h"
+#include "vtkHardwareSelector.h"
+#include "vtkIdTypeArray.h"
 #include "vtkLookupTable.h"
 #include "vtkMath.h"
 #include "vtkMultiBlockDataSet.h"
@@ -43,15 +45,19 @@
 #include "vtkProperty.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
+#include "vtkSelection.h"
+#include "vtkSelectionNode.h"
 #include "vtkSmartPointer.h"
 #include "vtkSphereSource.h"
 #include "vtkTestErrorObserver.h"
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <fstream>
 #include <limits>
+#include <map>
 #include <set>
 #include <string>
 #include <vector>
@@ -1360,4 +1366,299 @@ TEST(MultiresolutionMapperSlots, MovingFrontsRewriteOnlyTheirSlots)
     }
   }
   EXPECT_GE(frontChanges, 4) << "the camera path should move the fronts";
+}
+
+//------------------------------------------------------------------------------
+// Hardware selection (vtkHardwareSelector on the renderer, as ParaView selects):
+// every selected (flat index, cell id) is a leaf cell that the mapper drew, at
+// any resolution and for view-dependent fronts, and the cell under a drawn
+// triangle's centre is that triangle's own.
+namespace
+{
+// The leaf cells drawn for object i by the last render, each with the drawn
+// triangle (its index among the object's drawn triangles) it became: a cell
+// is drawn when its corners, moved up the substitution forest to vertices
+// that the drawn triangles use, are the corners of a drawn triangle.
+struct DrawnCells
+{
+  std::vector<std::array<uint32_t, 3>> Triangles; // leaf point ids
+  std::map<vtkIdType, size_t> CellTriangle;       // drawn cell -> its drawn triangle
+  std::set<uint32_t> Vertices;
+};
+
+DrawnCells GetDrawnCells(vtkMultiresolutionPolyDataMapper* mapper, vtkIdType object, vtkPolyData* leaf)
+{
+  DrawnCells drawn;
+  const uint32_t* indices = mapper->GetLastIndices();
+  size_t start = 0;
+  for (vtkIdType i = 0; i < object; ++i)
+  {
+    start += 3 * static_cast<size_t>(mapper->GetObjectRenderedTriangles(i));
+  }
+  const auto offset = static_cast<uint32_t>(mapper->GetObjectVertexOffset(object));
+  std::map<std::array<uint32_t, 3>, size_t> byCorners;
+  for (vtkIdType t = 0; t < mapper->GetObjectRenderedTriangles(object); ++t)
+  {
+    std::array<uint32_t, 3> corners;
+    for (int k = 0; k < 3; ++k)
+    {
+      corners[k] = indices[start + 3 * t + k] - offset;
+      drawn.Vertices.insert(corners[k]);
+    }
+    drawn.Triangles.push_back(corners);
+    std::sort(corners.begin(), corners.end());
+    byCorners[corners] = static_cast<size_t>(t);
+  }
+  vtkDataArray* substitution =
+    leaf->GetPointData()->GetArray(vtkTOMFieldData::SubstitutionArrayName());
+  auto up = [&](vtkIdType v)
+  {
+    while (substitution && !drawn.Vertices.count(static_cast<uint32_t>(v)))
+    {
+      const auto parent = static_cast<vtkIdType>(substitution->GetComponent(v, 0));
+      if (parent == v)
+      {
+        break;
+      }
+      v = parent;
+    }
+    return static_cast<uint32_t>(v);
+  };
+  for (vtkIdType c = 0; c < leaf->GetNumberOfPolys(); ++c)
+  {
+    vtkIdType npts;
+    const vtkIdType* ids;
+    leaf->GetPolys()->GetCellAtId(c, npts, ids);
+    if (npts != 3)
+    {
+      continue;
+    }
+    std::array<uint32_t, 3> corners = { up(ids[0]), up(ids[1]), up(ids[2]) };
+    std::sort(corners.begin(), corners.end());
+    auto found = byCorners.find(corners);
+    if (found != byCorners.end())
+    {
+      EXPECT_EQ(drawn.CellTriangle.count(c), 0u);
+      drawn.CellTriangle[c] = found->second;
+    }
+  }
+  // Every drawn triangle comes from exactly one cell.
+  EXPECT_EQ(drawn.CellTriangle.size(), drawn.Triangles.size()) << "object " << object;
+  return drawn;
+}
+
+// (flat index, id) pairs of an area selection of the whole window.
+std::set<std::pair<unsigned int, vtkIdType>> SelectArea(Scene& scene, int association)
+{
+  vtkNew<vtkHardwareSelector> selector;
+  selector->SetRenderer(scene.Renderer);
+  selector->SetFieldAssociation(association);
+  const int* size = scene.Window->GetSize();
+  selector->SetArea(0, 0, static_cast<unsigned int>(size[0] - 1), static_cast<unsigned int>(size[1] - 1));
+  vtkSmartPointer<vtkSelection> selection;
+  selection.TakeReference(selector->Select());
+  std::set<std::pair<unsigned int, vtkIdType>> pairs;
+  for (unsigned int n = 0; selection && n < selection->GetNumberOfNodes(); ++n)
+  {
+    vtkSelectionNode* node = selection->GetNode(n);
+    EXPECT_EQ(node->GetProperties()->Get(vtkSelectionNode::PROP()), scene.Actor.GetPointer());
+    const auto flat =
+      static_cast<unsigned int>(node->GetProperties()->Get(vtkSelectionNode::COMPOSITE_INDEX()));
+    auto ids = vtkIdTypeArray::SafeDownCast(node->GetSelectionList());
+    for (vtkIdType k = 0; ids && k < ids->GetNumberOfTuples(); ++k)
+    {
+      pairs.emplace(flat, ids->GetValue(k));
+    }
+  }
+  return pairs;
+}
+
+// Checks the area selection of cells (and of points) and, for each object, the
+// pixel at the centre of its largest drawn triangle facing the camera (+z).
+void CheckSelection(vtkMultiresolutionPolyDataMapper* mapper, Scene& scene,
+  const std::vector<vtkPolyData*>& leaves, const std::string& what, bool pixels = true)
+{
+  // What is drawn, from the triangle indices of a surface render.
+  vtkProperty* property = scene.Actor->GetProperty();
+  const int representation = property->GetRepresentation();
+  property->SetRepresentationToSurface();
+  scene.Render();
+  std::map<unsigned int, vtkIdType> objectOfFlat;
+  std::vector<DrawnCells> drawn;
+  for (vtkIdType i = 0; i < mapper->GetNumberOfObjects(); ++i)
+  {
+    objectOfFlat[mapper->GetObjectFlatIndex(i)] = i;
+    drawn.push_back(GetDrawnCells(mapper, i, leaves[i]));
+  }
+  property->SetRepresentation(representation);
+  scene.Render();
+
+  // Pairs that are not a drawn cell of an object: counted, the first one shown.
+  size_t wrong = 0;
+  std::string example;
+  auto check = [&](const std::pair<unsigned int, vtkIdType>& pair, bool cell)
+  {
+    auto object = objectOfFlat.find(pair.first);
+    const bool right = object != objectOfFlat.end() &&
+      (cell ? drawn[object->second].CellTriangle.count(pair.second)
+            : drawn[object->second].Vertices.count(static_cast<uint32_t>(pair.second))) == 1;
+    if (!right && wrong++ == 0)
+    {
+      example = (cell ? "cell " : "point ") + std::to_string(pair.second) + " of flat index " +
+        std::to_string(pair.first);
+    }
+    return right ? object->second : -1;
+  };
+  const auto cells = SelectArea(scene, vtkDataObject::FIELD_ASSOCIATION_CELLS);
+  std::vector<size_t> selected(leaves.size(), 0);
+  for (const auto& pair : cells)
+  {
+    const vtkIdType object = check(pair, true);
+    selected[object >= 0 ? object : 0] += object >= 0 ? 1 : 0;
+  }
+  EXPECT_EQ(wrong, 0u) << what << ": " << wrong << " of " << cells.size()
+                       << " selected cells not drawn, e.g. " << example;
+  for (size_t i = 0; i < leaves.size(); ++i)
+  {
+    // Every object shows many of its cells.
+    EXPECT_GT(selected[i], std::min<size_t>(20, drawn[i].Triangles.size() / 4))
+      << what << ": object " << i;
+  }
+
+  const auto points = SelectArea(scene, vtkDataObject::FIELD_ASSOCIATION_POINTS);
+  EXPECT_GT(points.size(), 20u) << what;
+  wrong = 0;
+  for (const auto& pair : points)
+  {
+    check(pair, false);
+  }
+  EXPECT_EQ(wrong, 0u) << what << ": " << wrong << " of " << points.size()
+                       << " selected points not drawn, e.g. " << example;
+  if (!pixels)
+  {
+    return;
+  }
+
+  vtkNew<vtkHardwareSelector> selector;
+  selector->SetRenderer(scene.Renderer);
+  selector->SetFieldAssociation(vtkDataObject::FIELD_ASSOCIATION_CELLS);
+  const int* size = scene.Window->GetSize();
+  selector->SetArea(0, 0, static_cast<unsigned int>(size[0] - 1), static_cast<unsigned int>(size[1] - 1));
+  ASSERT_TRUE(selector->CaptureBuffers());
+  for (size_t i = 0; i < leaves.size(); ++i)
+  {
+    double largest = 0.0, aim[3] = { 0, 0, 0 };
+    size_t target = 0;
+    for (size_t t = 0; t < drawn[i].Triangles.size(); ++t)
+    {
+      double p[3][3];
+      for (int k = 0; k < 3; ++k)
+      {
+        leaves[i]->GetPoint(drawn[i].Triangles[t][k], p[k]);
+      }
+      const double u[3] = { p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2] };
+      const double v[3] = { p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2] };
+      double n[3];
+      vtkMath::Cross(u, v, n);
+      const double area = vtkMath::Norm(n);
+      if (area > largest && n[2] > 0.9 * area)
+      {
+        largest = area;
+        target = t;
+        for (int k = 0; k < 3; ++k)
+        {
+          aim[k] = (p[0][k] + p[1][k] + p[2][k]) / 3.0;
+        }
+      }
+    }
+    ASSERT_GT(largest, 0.0) << what << ": object " << i;
+    vtkIdType cell = -1;
+    for (const auto& entry : drawn[i].CellTriangle)
+    {
+      if (entry.second == target)
+      {
+        cell = entry.first;
+      }
+    }
+    scene.Renderer->SetWorldPoint(aim[0], aim[1], aim[2], 1.0);
+    scene.Renderer->WorldToDisplay();
+    double display[3];
+    scene.Renderer->GetDisplayPoint(display);
+    const unsigned int position[2] = { static_cast<unsigned int>(std::lround(display[0])),
+      static_cast<unsigned int>(std::lround(display[1])) };
+    const vtkHardwareSelector::PixelInformation info = selector->GetPixelInformation(position);
+    ASSERT_TRUE(info.Valid) << what << ": object " << i;
+    EXPECT_EQ(info.Prop, scene.Actor.GetPointer());
+    EXPECT_EQ(info.CompositeID, mapper->GetObjectFlatIndex(static_cast<vtkIdType>(i)))
+      << what << ": object " << i;
+    EXPECT_EQ(info.AttributeID, cell) << what << ": object " << i;
+  }
+}
+}
+
+TEST(MultiresolutionMapperSelection, AreaSelectionReportsLeafCellsAtAnyResolution)
+{
+  NestedScene data;
+  vtkNew<vtkMultiresolutionPolyDataMapper> mapper;
+  mapper->SetInputDataObject(data.Input);
+  Scene scene(mapper, 500);
+  scene.SetCamera(0, 0, 7);
+  const std::vector<vtkPolyData*> leaves(data.Leaves.begin(), data.Leaves.end());
+  CheckSelection(mapper, scene, leaves, "full resolution");
+
+  const double reduced[4] = { 0.3, 0.5, 0.15, 0.6 };
+  mapper->SetObjectResolutions(reduced, 4);
+  scene.Render();
+  CheckSelection(mapper, scene, leaves, "reduced");
+  for (vtkIdType i = 0; i < 4; ++i)
+  {
+    EXPECT_LT(mapper->GetObjectRenderedTriangles(i), mapper->GetObjectNumberOfTriangles(i));
+  }
+
+  // Slots moved by growth and shrinking: ids follow the slots, not object order.
+  const double moved[4] = { 0.9, 0.1, 0.7, 0.2 };
+  mapper->SetObjectResolutions(moved, 4);
+  CheckSelection(mapper, scene, leaves, "moved slots");
+
+  scene.Actor->GetProperty()->SetRepresentationToWireframe();
+  CheckSelection(mapper, scene, leaves, "wireframe", false);
+  scene.Actor->GetProperty()->SetRepresentationToPoints();
+  scene.Actor->GetProperty()->SetPointSize(3);
+  CheckSelection(mapper, scene, leaves, "points", false);
+}
+
+TEST(MultiresolutionMapperSelection, FrontsAndNonTOMLeaves)
+{
+  // A view-dependent front, a TOM and a plain (non-TOM) surface.
+  vtkNew<vtkMergeTreeBuilder> builder;
+  builder->SetInputData(tt::MakeBumpySurface(0.5, 40, 30, -1.2, 0, 0, 7.0));
+  builder->Update();
+  auto tree = vtkSmartPointer<vtkPolyData>::New();
+  tree->ShallowCopy(builder->GetOutput());
+  auto tom = MakeTOM(0.45, 48, 32, 0, 0, 0);
+  vtkNew<vtkSphereSource> plain;
+  plain->SetCenter(1.2, 0, 0);
+  plain->SetRadius(0.4);
+  plain->Update();
+  vtkNew<vtkMultiBlockDataSet> blocks;
+  blocks->SetNumberOfBlocks(3);
+  blocks->SetBlock(0, tree);
+  blocks->SetBlock(1, tom);
+  blocks->SetBlock(2, plain->GetOutput());
+  vtkNew<vtkMultiresolutionPolyDataMapper> mapper;
+  EventCounter warnings(mapper, vtkCommand::WarningEvent); // the non-TOM leaf
+  mapper->SetInputDataObject(blocks);
+  mapper->UpdateObjects();
+  EXPECT_EQ(warnings.Count, 1);
+  mapper->SetResolution(0.3);
+  Scene scene(mapper, 500);
+  scene.SetCamera(0, 0, 7);
+  scene.Render();
+  ASSERT_TRUE(mapper->GetObjectIsViewDependent(0));
+  ASSERT_FALSE(mapper->GetObjectIsTOM(2));
+  EXPECT_LT(mapper->GetObjectRenderedTriangles(0), mapper->GetObjectNumberOfTriangles(0));
+  const std::vector<vtkPolyData*> leaves = { tree, tom, plain->GetOutput() };
+  CheckSelection(mapper, scene, leaves, "front");
+  scene.Actor->GetProperty()->SetRepresentationToWireframe();
+  CheckSelection(mapper, scene, leaves, "front, wireframe", false);
 }
