@@ -11,7 +11,6 @@
 #include "vtkTOMFieldData.h"
 
 #include "vtkActor.h"
-#include "vtkAppendPolyData.h"
 #include "vtkCellArray.h"
 #include "vtkCamera.h"
 #include "vtkCellData.h"
@@ -19,11 +18,13 @@
 #include "vtkCompositeDataIterator.h"
 #include "vtkCompositeDataSet.h"
 #include "vtkDataObjectTreeIterator.h"
+#include "vtkDataSetAttributes.h"
 #include "vtkFloatArray.h"
 #include "vtkHardwareSelector.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkLight.h"
+#include "vtkLookupTable.h"
 #include "vtkLightCollection.h"
 #include "vtkMath.h"
 #include "vtkMatrix3x3.h"
@@ -48,9 +49,9 @@
 #include "vtkRenderer.h"
 #include "vtkScalarsToColors.h"
 #include "vtkSmartPointer.h"
+#include "vtkStateStorage.h"
 #include "vtkTextureObject.h"
-#include "vtkTypeInt32Array.h"
-#include "vtkTypeInt64Array.h"
+#include "vtkTransform.h"
 #include "vtkIdTypeArray.h"
 #include "vtkUnsignedIntArray.h"
 #include "vtkUnsignedCharArray.h"
@@ -62,6 +63,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <functional>
 #include <map>
 #include <memory>
 #include <set>
@@ -224,6 +226,7 @@ struct vtkMultiresolutionPolyDataMapper::Internals
     vtkIdType VertOffset = 0;
     vtkIdType LineOffset = 0;
     vtkIdType StripOffset = 0;
+    vtkIdType CellOffset = 0; // first of its cells among all leaves' cells in leaf order
     timecritical::TOMTraversal Traversal;
     size_t SubstitutionStart = 0; // into Substitution (TOM only)
     size_t TriangleStart = 0;     // into Triangles (TOM) or StaticTriangles (others), in triangles
@@ -283,9 +286,15 @@ struct vtkMultiresolutionPolyDataMapper::Internals
   std::vector<uint32_t> StaticTriangles;
   std::vector<uint32_t> StaticTriangleCells;
 
-  vtkSmartPointer<vtkPolyData> Merged;
-  vtkIdType PolyCellBase = 0; // cell id of the first merged polygon (verts and lines come first)
-  bool MergedHasOtherCells = false;
+  // The superclass's input (CurrentInput), which holds no copy of the leaves:
+  // no points, and arrays of no tuples named and flagged as those common to
+  // all leaves (they decide the shaders' attributes and the coloring mode),
+  // plus the vertices, lines and strips of the leaves in merged point ids
+  // (drawn with VTK's own index buffers). Vertex buffers are appended from
+  // the leaves, scalars mapped per leaf (BuildBufferObjects, MapScalars).
+  vtkSmartPointer<vtkPolyData> Skeleton;
+  bool HasOtherCells = false; // the skeleton has vertices, lines or strips
+  vtkIdType TotalCells = 0;
   vtkIdType MaxObjectTriangles = 0;
   size_t MaxSurfaceIndices = 0;
   size_t MaxWireIndices = 0;
@@ -335,6 +344,16 @@ struct vtkMultiresolutionPolyDataMapper::Internals
 
   vtkSmartPointer<vtkUnsignedCharArray> ResolutionColors;
   bool ColorsAreResolutionMap = false; // this->Colors is a resolution map
+  // The leaves' mapped scalars (MapLeafScalars): when, and for what.
+  vtkTimeStamp ColorsTime;
+  bool ColorsValid = false;
+  double ColorsAlpha = 1.0;
+  int ColorsCellFlag = 0;
+  bool ColorsTexture = false;
+  // What the vertex buffers were built from (BuildVertexBuffers).
+  vtkStateStorage LeafVBOState;
+  vtkStateStorage ColorVBOState;
+  bool ForceVertexUpload = false; // a camera-based shift and scale moved
 
   vtkNew<vtkMultiresolutionReleaseProxy> ReleaseProxy;
   vtkOpenGLRenderWindow* Window = nullptr; // holds our GL resources; cleared on release
@@ -348,23 +367,23 @@ struct vtkMultiresolutionPolyDataMapper::Internals
   // Hardware selection: which object drew a primitive or vertex, and its leaf's ids.
   struct Selection;
   const Object* ObjectOfVertex(vtkIdType vertex) const;
-  const Object* ObjectOfMergedCell(vtkIdType cell, vtkIdType& leafCell) const;
+  const Object* ObjectOfOtherCell(vtkIdType cell, vtkIdType& leafCell) const;
+  const Object* ObjectOfCell(vtkIdType cell) const; ///< cell in leaf order (Object::CellOffset)
 
   Content Describe(const Object& object, bool viewDependent) const;
   size_t Stage(Object& object, const Content& content);
   void Emit(const Object& object, const Content& content, size_t used, uint32_t* out,
-    vtkIdType* cells, vtkCellArray* polys) const;
+    vtkIdType* cells) const;
   void SetRenderedCounts(Object& object, const Content& content) const;
   size_t SlotSizeFor(size_t used, size_t full, double slack) const;
   bool Allocate(size_t size, size_t& start, bool& fresh);
   void Release(size_t start, size_t size);
   bool GrowInPlace(Object& object, size_t size, bool& fresh);
   void FillDegenerate(size_t start, size_t count, uint32_t vertex);
-  void WriteSlot(Object& object, const Content& content, size_t used, size_t extent,
-    vtkCellArray* polys);
+  void WriteSlot(Object& object, const Content& content, size_t used, size_t extent);
   void ClearSlot(Object& object);
-  bool Update(Object& object, const Content& content, double slack, vtkCellArray* polys);
-  void LayOut(bool viewDependent, double slack, vtkCellArray* polys);
+  bool Update(Object& object, const Content& content, double slack);
+  void LayOut(bool viewDependent, double slack);
   void Compact(double slack);
   size_t PaddingLimit(double slack) const;
 };
@@ -502,7 +521,7 @@ void vtkMultiresolutionPolyDataMapper::ReadObjects(vtkDataObject* input)
   std::vector<uint32_t>().swap(in.Triangles);
   std::vector<uint32_t>().swap(in.StaticTriangles);
   std::vector<uint32_t>().swap(in.StaticTriangleCells);
-  in.Merged = nullptr;
+  in.Skeleton = nullptr;
   in.LayoutValid = false; // other objects: the next render lays the index buffer out
   in.CompactValid = false;
   in.Input = input;
@@ -584,6 +603,7 @@ void vtkMultiresolutionPolyDataMapper::ReadObjects(vtkDataObject* input)
   vtkIdType lineOffset = 0;
   vtkIdType polyOffset = 0;
   vtkIdType stripOffset = 0;
+  vtkIdType cellOffset = 0;
   in.MaxObjectTriangles = 0;
   in.MaxSurfaceIndices = in.MaxWireIndices = in.MaxPointIndices = 0;
   for (const auto& leaf : leaves)
@@ -615,6 +635,7 @@ void vtkMultiresolutionPolyDataMapper::ReadObjects(vtkDataObject* input)
     object.VertOffset = vertOffset;
     object.LineOffset = lineOffset;
     object.StripOffset = stripOffset;
+    object.CellOffset = cellOffset;
     object.VertexOffset = vertexOffset;
     object.NumberOfVertices = poly->GetNumberOfPoints();
     object.PolyOffset = polyOffset;
@@ -740,6 +761,7 @@ void vtkMultiresolutionPolyDataMapper::ReadObjects(vtkDataObject* input)
     lineOffset += object.NumberOfLines;
     polyOffset += object.NumberOfPolys;
     stripOffset += object.NumberOfStrips;
+    cellOffset += poly->GetNumberOfCells();
     parts.push_back(poly);
     in.Objects.push_back(std::move(object));
   }
@@ -765,52 +787,69 @@ void vtkMultiresolutionPolyDataMapper::ReadObjects(vtkDataObject* input)
   // The traversal writes batches in place and may use the output as scratch.
   Grow(in.Scratch, 3 * static_cast<size_t>(in.MaxObjectTriangles));
 
-  // One polydata for the superclass's vertex buffers: leaf points in order,
-  // leaf cells in order (vtkAppendPolyData keeps the arrays common to all leaves).
-  if (parts.size() == 1)
+  in.TotalCells = cellOffset;
+
+  // The skeleton (see Internals::Skeleton): arrays common to all leaves, as
+  // vtkAppendPolyData would keep them, without tuples; the leaves' other cells.
+  in.HasOtherCells = false;
+  if (!parts.empty())
   {
-    in.Merged = vtkSmartPointer<vtkPolyData>::New();
-    in.Merged->ShallowCopy(parts[0]);
-  }
-  else if (parts.size() > 1)
-  {
-    in.Merged = vtkSmartPointer<vtkPolyData>::New();
-    vtkNew<vtkAppendPolyData> append;
-    append->ExecuteAppend(in.Merged, parts.data(), static_cast<int>(parts.size()));
-    // 32-bit ids halve the merged polygons (32 -> 16 bytes per triangle). They
-    // stay whole: hardware selection maps primitive ids through VTK's cell map
-    // of them, and non-TOM leaves are drawn from them. Not for a single leaf,
-    // whose arrays the shallow copy above shares with the input.
-    // Converted by hand: vtkCellArray::ConvertTo32BitStorage() copies element
-    // by element through the generic array API, which tripled UpdateObjects()
-    // on W3 (13M triangles: ~2 -> ~6 s); typed loops take ~0.1 s.
-    vtkCellArray* polys = in.Merged->GetPolys();
-    if (polys->IsStorage64Bit() && in.Merged->GetNumberOfPoints() <= VTK_TYPE_INT32_MAX &&
-      polys->GetNumberOfConnectivityIds() <= VTK_TYPE_INT32_MAX)
+    in.Skeleton = vtkSmartPointer<vtkPolyData>::New();
+    vtkNew<vtkPoints> none;
+    in.Skeleton->SetPoints(none);
+    vtkDataSetAttributes::FieldList pointFields(static_cast<int>(parts.size()));
+    vtkDataSetAttributes::FieldList cellFields(static_cast<int>(parts.size()));
+    for (size_t k = 0; k < parts.size(); ++k)
     {
-      vtkTypeInt64Array* offsets64 = polys->GetOffsetsArray64();
-      vtkTypeInt64Array* connectivity64 = polys->GetConnectivityArray64();
-      auto narrow = [](vtkTypeInt64Array* from) {
-        auto to = vtkSmartPointer<vtkTypeInt32Array>::New();
-        const vtkIdType n = from->GetNumberOfValues();
-        to->SetNumberOfValues(n);
-        const vtkTypeInt64* src = from->GetPointer(0);
-        vtkTypeInt32* dst = to->GetPointer(0);
-        for (vtkIdType i = 0; i < n; ++i)
+      if (k == 0)
+      {
+        pointFields.InitializeFieldList(parts[k]->GetPointData());
+        cellFields.InitializeFieldList(parts[k]->GetCellData());
+      }
+      else
+      {
+        pointFields.IntersectFieldList(parts[k]->GetPointData());
+        cellFields.IntersectFieldList(parts[k]->GetCellData());
+      }
+    }
+    // One tuple of room: 0 would reserve the sum of the leaves' tuples.
+    in.Skeleton->GetPointData()->CopyAllocate(pointFields, 1);
+    in.Skeleton->GetCellData()->CopyAllocate(cellFields, 1);
+    // Edge flags are ignored (see the class comment); VTK would read them per point.
+    in.Skeleton->GetPointData()->SetActiveAttribute(-1, vtkDataSetAttributes::EDGEFLAG);
+
+    vtkNew<vtkCellArray> verts, lines, strips;
+    std::vector<vtkIdType> shifted;
+    for (const auto& object : in.Objects)
+    {
+      vtkCellArray* from[3] = { object.Leaf->GetVerts(), object.Leaf->GetLines(),
+        object.Leaf->GetStrips() };
+      vtkCellArray* to[3] = { verts, lines, strips };
+      for (int type = 0; type < 3; ++type)
+      {
+        vtkIdType npts = 0;
+        const vtkIdType* ids = nullptr;
+        for (vtkIdType c = 0; c < from[type]->GetNumberOfCells(); ++c)
         {
-          dst[i] = static_cast<vtkTypeInt32>(src[i]);
+          from[type]->GetCellAtId(c, npts, ids);
+          shifted.assign(ids, ids + npts);
+          for (vtkIdType& id : shifted)
+          {
+            id += object.VertexOffset;
+          }
+          to[type]->InsertNextCell(npts, shifted.data());
         }
-        return to;
-      };
-      vtkSmartPointer<vtkTypeInt32Array> offsets = narrow(offsets64);
-      vtkSmartPointer<vtkTypeInt32Array> connectivity = narrow(connectivity64);
-      polys->SetData(offsets, connectivity);
+      }
+    }
+    in.HasOtherCells =
+      verts->GetNumberOfCells() || lines->GetNumberOfCells() || strips->GetNumberOfCells();
+    if (in.HasOtherCells)
+    {
+      in.Skeleton->SetVerts(verts);
+      in.Skeleton->SetLines(lines);
+      in.Skeleton->SetStrips(strips);
     }
   }
-  in.PolyCellBase = in.Merged ? in.Merged->GetNumberOfVerts() + in.Merged->GetNumberOfLines() : 0;
-  in.MergedHasOtherCells = in.Merged &&
-    (in.Merged->GetNumberOfVerts() || in.Merged->GetNumberOfLines() ||
-      in.Merged->GetNumberOfStrips());
   in.ResolutionColors = nullptr;
 }
 
@@ -1171,30 +1210,194 @@ vtkUnsignedCharArray* vtkMultiresolutionPolyDataMapper::MapScalars(double alpha,
     }
     in.ColorsAreResolutionMap = false;
   }
-  vtkDataSet* data = in.Merged ? static_cast<vtkDataSet*>(in.Merged) : this->GetInput();
-  return this->Superclass::MapScalars(data, alpha, cellFlag);
+  // Only arrays common to all leaves color (as vtkAppendPolyData keeps them):
+  // the skeleton has those. One leaf maps its own array, without a copy.
+  vtkAbstractArray* common = in.Skeleton ? vtkAbstractMapper::GetAbstractScalars(in.Skeleton,
+                                             this->ScalarMode, this->ArrayAccessMode, this->ArrayId,
+                                             this->ArrayName, cellFlag)
+                                         : nullptr;
+  if (!this->ScalarVisibility || !common || in.Objects.size() == 1)
+  {
+    vtkDataSet* data = common && in.Objects.size() == 1
+      ? static_cast<vtkDataSet*>(in.Objects[0].Leaf)
+      : static_cast<vtkDataSet*>(in.Skeleton);
+    in.ColorsValid = false; // the superclass's own colors: no per-leaf cache
+    return this->Superclass::MapScalars(data, alpha, cellFlag);
+  }
+  return this->MapLeafScalars(common, alpha, cellFlag);
+}
+
+vtkAbstractArray* vtkMultiresolutionPolyDataMapper::GetLeafScalars(
+  vtkPolyData* leaf, vtkAbstractArray* common, int cellFlag)
+{
+  // By name when the common array has one (array ids count the common arrays).
+  const char* name = common->GetName();
+  if (name && *name && cellFlag < 2)
+  {
+    vtkDataSetAttributes* attributes = cellFlag == 1
+      ? static_cast<vtkDataSetAttributes*>(leaf->GetCellData())
+      : static_cast<vtkDataSetAttributes*>(leaf->GetPointData());
+    return attributes->GetAbstractArray(name);
+  }
+  int flag = 0;
+  return vtkAbstractMapper::GetAbstractScalars(
+    leaf, this->ScalarMode, this->ArrayAccessMode, this->ArrayId, this->ArrayName, flag);
+}
+
+vtkUnsignedCharArray* vtkMultiresolutionPolyDataMapper::MapLeafScalars(
+  vtkAbstractArray* common, double alpha, int cellFlag)
+{
+  // Each leaf's scalars mapped with the mapper's one lookup table and range,
+  // into one array in leaf order (point colors in vertex buffer order, cell
+  // colors in the cells' leaf order: Object::CellOffset), as vtkMapper maps
+  // one dataset's. Interpolated scalars (texture coloring) concatenate the
+  // leaves' texture coordinates instead.
+  Internals& in = *this->Internal;
+  if (this->ArrayComponent < 0 || common->GetNumberOfComponents() <= this->ArrayComponent)
+  {
+    this->ArrayComponent = 0;
+  }
+  vtkDataArray* first = vtkArrayDownCast<vtkDataArray>(
+    this->GetLeafScalars(in.Objects[0].Leaf, common, cellFlag));
+  if (first && first->GetLookupTable())
+  {
+    this->SetLookupTable(first->GetLookupTable());
+  }
+  else
+  {
+    if (!this->LookupTable)
+    {
+      this->CreateDefaultLookupTable();
+    }
+    this->LookupTable->Build();
+  }
+  if (!this->UseLookupTableScalarRange)
+  {
+    this->LookupTable->SetRange(this->ScalarRange);
+  }
+  const bool texture = this->CanUseTextureMapForColoring(in.Skeleton) != 0;
+  const vtkMTimeType newest = std::max(
+    { this->GetMTime(), in.Skeleton->GetMTime(), this->LookupTable->GetMTime() });
+  const bool cached = in.ColorsValid && in.ColorsTime > newest && in.ColorsAlpha == alpha &&
+    in.ColorsCellFlag == cellFlag && in.ColorsTexture == texture &&
+    (texture ? this->ColorCoordinates != nullptr : this->Colors != nullptr);
+  if (cached)
+  {
+    return texture ? nullptr : this->Colors;
+  }
+  auto release = [this](auto*& array)
+  {
+    if (array)
+    {
+      array->UnRegister(this);
+      array = nullptr;
+    }
+  };
+  release(this->Colors);
+  release(this->ColorCoordinates);
+  if (!texture)
+  {
+    release(this->ColorTextureMap);
+  }
+  const vtkIdType total = cellFlag == 1 ? in.TotalCells : in.TotalVertices;
+  vtkSmartPointer<vtkUnsignedCharArray> colors;
+  vtkSmartPointer<vtkFloatArray> coordinates;
+  const double lutAlpha = this->LookupTable->GetAlpha();
+  this->LookupTable->SetAlpha(alpha);
+  for (const auto& object : in.Objects)
+  {
+    vtkAbstractArray* scalars = this->GetLeafScalars(object.Leaf, common, cellFlag);
+    const vtkIdType offset = cellFlag == 1 ? object.CellOffset : object.VertexOffset;
+    const vtkIdType count = cellFlag == 1 ? object.Leaf->GetNumberOfCells() : object.NumberOfVertices;
+    if (!scalars || scalars->GetNumberOfTuples() != count)
+    {
+      continue; // not drawn in color (a valid leaf always has it: common array)
+    }
+    if (texture)
+    {
+      // Texture coordinates of this leaf's scalars; the texture is the table's.
+      this->MapScalarsToTexture(scalars, alpha);
+      if (!this->ColorCoordinates)
+      {
+        continue;
+      }
+      if (!coordinates)
+      {
+        coordinates = vtkSmartPointer<vtkFloatArray>::New();
+        coordinates->SetNumberOfComponents(this->ColorCoordinates->GetNumberOfComponents());
+        coordinates->SetNumberOfTuples(total);
+        coordinates->Fill(0.0);
+      }
+      for (vtkIdType t = 0; t < count; ++t)
+      {
+        coordinates->SetTuple(offset + t, t, this->ColorCoordinates);
+      }
+      release(this->ColorCoordinates);
+      continue;
+    }
+    vtkSmartPointer<vtkUnsignedCharArray> mapped;
+    mapped.TakeReference(this->LookupTable->MapScalars(scalars, this->ColorMode, this->ArrayComponent));
+    if (!mapped || mapped->GetNumberOfComponents() != 4)
+    {
+      continue;
+    }
+    if (!colors)
+    {
+      colors = vtkSmartPointer<vtkUnsignedCharArray>::New();
+      colors->SetNumberOfComponents(4);
+      colors->SetNumberOfTuples(total);
+      colors->Fill(255);
+    }
+    std::memcpy(colors->GetPointer(4 * offset), mapped->GetPointer(0), 4 * static_cast<size_t>(count));
+  }
+  this->LookupTable->SetAlpha(lutAlpha);
+  if (coordinates)
+  {
+    this->ColorCoordinates = coordinates;
+    this->ColorCoordinates->Register(this);
+  }
+  if (colors)
+  {
+    this->Colors = colors;
+    this->Colors->Register(this);
+  }
+  in.ColorsTime.Modified();
+  in.ColorsValid = true;
+  in.ColorsAlpha = alpha;
+  in.ColorsCellFlag = cellFlag;
+  in.ColorsTexture = texture;
+  return this->Colors;
 }
 
 bool vtkMultiresolutionPolyDataMapper::HasTranslucentPolygonalGeometry()
 {
   Internals& in = *this->Internal;
-  if (this->ColorByResolution || !this->ScalarVisibility || !in.Merged)
+  if (this->ColorByResolution || !this->ScalarVisibility || !in.Skeleton)
   {
     return false;
   }
   int cellFlag = 0;
-  vtkAbstractArray* scalars = vtkAbstractMapper::GetAbstractScalars(
-    in.Merged, this->ScalarMode, this->ArrayAccessMode, this->ArrayId, this->ArrayName, cellFlag);
-  if (!scalars)
+  vtkAbstractArray* common = vtkAbstractMapper::GetAbstractScalars(
+    in.Skeleton, this->ScalarMode, this->ArrayAccessMode, this->ArrayId, this->ArrayName, cellFlag);
+  if (!common)
   {
     return false;
   }
-  unsigned char ghostsToSkip = 0;
-  vtkUnsignedCharArray* ghosts =
-    vtkAbstractMapper::GetGhostArray(in.Merged, this->ScalarMode, ghostsToSkip);
   vtkScalarsToColors* lut = this->GetLookupTable();
   lut->Build();
-  return lut->IsOpaque(scalars, this->ColorMode, this->ArrayComponent, ghosts, ghostsToSkip) == 0;
+  for (const auto& object : in.Objects)
+  {
+    vtkAbstractArray* scalars = this->GetLeafScalars(object.Leaf, common, cellFlag);
+    unsigned char ghostsToSkip = 0;
+    vtkUnsignedCharArray* ghosts =
+      vtkAbstractMapper::GetGhostArray(object.Leaf, this->ScalarMode, ghostsToSkip);
+    if (scalars &&
+      lut->IsOpaque(scalars, this->ColorMode, this->ArrayComponent, ghosts, ghostsToSkip) == 0)
+    {
+      return true;
+    }
+  }
+  return false;
 }
 
 //------------------------------------------------------------------------------
@@ -1218,8 +1421,8 @@ void vtkMultiresolutionPolyDataMapper::RenderPiece(vtkRenderer* ren, vtkActor* a
   this->UpdateObjects();
   this->InvokeEvent(vtkCommand::EndEvent, nullptr);
 
-  this->CurrentInput = in.Merged;
-  if (!in.Merged || !in.Merged->GetPoints())
+  this->CurrentInput = in.Skeleton;
+  if (!in.Skeleton || in.TotalVertices == 0)
   {
     // Nothing to draw (empty input or no polydata leaf).
     this->RenderedTriangles = 0;
@@ -1513,9 +1716,234 @@ void vtkMultiresolutionPolyDataMapper::BuildBufferObjects(vtkRenderer* ren, vtkA
   {
     this->ScalarVisibility = 0;
   }
-  this->Superclass::BuildBufferObjects(ren, act);
+  this->BuildVertexBuffers(ren, act);
   this->ScalarVisibility = scalarVisibility;
   ++in.VertexBufferBuildCount;
+}
+
+void vtkMultiresolutionPolyDataMapper::BuildVertexBuffers(vtkRenderer* ren, vtkActor* act)
+{
+  // What vtkOpenGLPolyDataMapper::BuildBufferObjects does for one polydata,
+  // with the vertex buffers appended from the leaves (in object order, the
+  // vertex offsets) instead of read from one merged copy of them.
+  Internals& in = *this->Internal;
+  vtkPolyData* skeleton = this->CurrentInput;
+  this->MapScalars(1.0);
+  if (this->ColorTextureMap)
+  {
+    if (!this->InternalColorTexture)
+    {
+      this->InternalColorTexture = vtkOpenGLTexture::New();
+      this->InternalColorTexture->RepeatOff();
+    }
+    this->InternalColorTexture->SetInputData(this->ColorTextureMap);
+  }
+
+  // Cell colors: cell scalars, or scalars without point scalars.
+  this->HaveCellScalars = false;
+  vtkDataArray* pointColors = this->Colors;
+  if (this->ScalarVisibility && this->Colors && this->Colors->GetNumberOfTuples() > 0 &&
+    this->ScalarMode != VTK_SCALAR_MODE_USE_POINT_FIELD_DATA &&
+    (this->ScalarMode == VTK_SCALAR_MODE_USE_CELL_DATA ||
+      this->ScalarMode == VTK_SCALAR_MODE_USE_CELL_FIELD_DATA ||
+      this->ScalarMode == VTK_SCALAR_MODE_USE_FIELD_DATA || !skeleton->GetPointData()->GetScalars()))
+  {
+    this->HaveCellScalars = true;
+    pointColors = nullptr;
+  }
+  const int representation = act->GetProperty()->GetRepresentation();
+  const int interpolation = act->GetProperty()->GetInterpolation();
+  const bool pointNormals =
+    interpolation != VTK_FLAT && skeleton->GetPointData()->GetNormals() != nullptr;
+  this->HaveCellNormals = !pointNormals && skeleton->GetCellData()->GetNormals() != nullptr;
+
+  vtkCellArray* prims[4] = { skeleton->GetVerts(), skeleton->GetLines(), skeleton->GetPolys(),
+    skeleton->GetStrips() };
+  this->CellCellMap->SetStartOffset(0);
+  this->TempState.Clear();
+  for (vtkCellArray* prim : prims)
+  {
+    this->TempState.Append(prim->GetNumberOfCells() ? prim->GetMTime() : 0, "prim mtime");
+  }
+  this->TempState.Append(representation, "representation");
+  this->TempState.Append(interpolation, "interpolation");
+  this->TempState.Append(skeleton->GetMTime(), "polydata mtime");
+  this->TempState.Append(this->GetMTime(), "this mtime");
+  if (this->CellTextureBuildState != this->TempState)
+  {
+    this->CellTextureBuildState = this->TempState;
+    this->BuildCellTextures(ren, act, prims, representation);
+  }
+  this->CellCellMap->BuildPrimitiveOffsetsIfNeeded(prims, representation, skeleton->GetPoints());
+
+  // The vertex buffers follow the leaves (a re-read makes a new skeleton),
+  // the attributes drawn and the shift and scale method; a change of the
+  // colors alone re-uploads the color buffer only.
+  const int tcoords = !this->HaveTCoords(skeleton) ? 0
+    : this->InterpolateScalarsBeforeMapping && this->ColorCoordinates ? 2
+    : skeleton->GetPointData()->GetTCoords() ? 1
+                                              : 0;
+  vtkStateStorage leafState;
+  leafState.Append(skeleton->GetMTime(), "skeleton");
+  leafState.Append(pointNormals, "normals");
+  leafState.Append(tcoords, "tcoords");
+  leafState.Append(tcoords == 2 ? this->ColorCoordinates->GetMTime() : 0, "color coordinates");
+  leafState.Append(vtkFloatArray::SafeDownCast(skeleton->GetPointData()->GetTangents()) != nullptr,
+    "tangents");
+  std::string extras;
+  for (const auto& extra : this->ExtraAttributes)
+  {
+    extras += extra.first + "=" + extra.second.DataArrayName + ";";
+  }
+  leafState.Append(std::hash<std::string>()(extras), "extra attributes");
+  leafState.Append(this->ShiftScaleMethod, "shift scale");
+  vtkStateStorage colorState;
+  colorState.Append(pointColors, "colors");
+  colorState.Append(pointColors ? pointColors->GetMTime() : 0, "colors mtime");
+  vtkOpenGLVertexBufferObjectGroup* vbos = this->VBOs;
+  vtkOpenGLVertexBufferObject* colorVBO = vbos->GetVBO("scalarColor");
+  const bool rebuild = in.ForceVertexUpload || in.LeafVBOState != leafState ||
+    !vbos->GetVBO("vertexMC") || (pointColors != nullptr) != (colorVBO != nullptr);
+  if (!rebuild)
+  {
+    if (in.ColorVBOState != colorState && colorVBO)
+    {
+      colorVBO->UploadDataArray(pointColors);
+      in.ColorVBOState = colorState;
+    }
+    this->BuildIBO(ren, act, skeleton);
+    this->VBOBuildTime.Modified();
+    return;
+  }
+  in.LeafVBOState = leafState;
+  in.ColorVBOState = colorState;
+  in.ForceVertexUpload = false;
+  vbos->ClearAllVBOs();
+
+  // Per leaf: attributes whose arrays are common to all leaves (the
+  // skeleton's); colors and color coordinates are one array already.
+  std::vector<std::pair<std::string, int>> appended; // attribute, components
+  auto appendLeaves = [&](const char* attribute, vtkDataArray* (*get)(vtkPolyData*, const char*),
+                        const char* name, int type)
+  {
+    for (const auto& object : in.Objects)
+    {
+      vtkDataArray* array = get(object.Leaf, name);
+      if (!array || array->GetNumberOfTuples() != object.NumberOfVertices)
+      {
+        vtkErrorMacro("Block " << object.FlatIndex << " lacks the " << attribute
+                               << " array of the other leaves; not drawn right.");
+        continue;
+      }
+      vbos->AppendDataArray(attribute, array, type);
+      if (appended.empty() || appended.back().first != attribute)
+      {
+        appended.emplace_back(attribute, array->GetNumberOfComponents());
+      }
+    }
+  };
+  auto pointArray = [](vtkPolyData* leaf, const char* name) -> vtkDataArray*
+  { return leaf->GetPointData()->GetArray(name); };
+  for (const auto& extra : this->ExtraAttributes)
+  {
+    const char* name = extra.second.DataArrayName.c_str();
+    if (skeleton->GetPointData()->GetArray(name))
+    {
+      appendLeaves(extra.first.c_str(), pointArray, name, VTK_FLOAT);
+    }
+  }
+  appendLeaves(
+    "vertexMC", [](vtkPolyData* leaf, const char*) { return leaf->GetPoints()->GetData(); },
+    nullptr, VTK_FLOAT);
+  vtkOpenGLVertexBufferObject* positions = vbos->GetVBO("vertexMC");
+  if (positions)
+  {
+    // Before BuildAllVBOs: the first leaf's block sets the shift and scale.
+    positions->SetCoordShiftAndScaleMethod(
+      static_cast<vtkOpenGLVertexBufferObject::ShiftScaleMethod>(this->ShiftScaleMethod));
+    positions->SetProp3D(act);
+    positions->SetCamera(ren->GetActiveCamera());
+  }
+  if (pointNormals)
+  {
+    appendLeaves(
+      "normalMC", [](vtkPolyData* leaf, const char*) { return leaf->GetPointData()->GetNormals(); },
+      nullptr, VTK_FLOAT);
+  }
+  vbos->AppendDataArray("scalarColor", pointColors, VTK_UNSIGNED_CHAR);
+  if (tcoords == 2)
+  {
+    vbos->AppendDataArray("tcoord", this->ColorCoordinates, VTK_FLOAT);
+  }
+  else if (tcoords == 1)
+  {
+    appendLeaves(
+      "tcoord", [](vtkPolyData* leaf, const char*) { return leaf->GetPointData()->GetTCoords(); },
+      nullptr, VTK_FLOAT);
+  }
+  if (vtkFloatArray::SafeDownCast(skeleton->GetPointData()->GetTangents()))
+  {
+    appendLeaves(
+      "tangentMC", [](vtkPolyData* leaf, const char*) { return leaf->GetPointData()->GetTangents(); },
+      nullptr, VTK_FLOAT);
+  }
+  // Several blocks per attribute are packed on the CPU and uploaded: the
+  // packing vectors are reserved at their size (no growth slack) and freed
+  // once uploaded, so that no CPU copy of the vertex data stays.
+  for (const auto& attribute : appended)
+  {
+    vtkOpenGLVertexBufferObject* vbo = vbos->GetVBO(attribute.first.c_str());
+    if (vbo && in.Objects.size() > 1)
+    {
+      // Floats: a tuple is its components, no padding.
+      vbo->GetPackedVBO().reserve(static_cast<size_t>(in.TotalVertices) * attribute.second);
+    }
+  }
+  vbos->BuildAllVBOs(ren);
+  for (const auto& attribute : appended)
+  {
+    if (vtkOpenGLVertexBufferObject* vbo = vbos->GetVBO(attribute.first.c_str()))
+    {
+      std::vector<float>().swap(vbo->GetPackedVBO());
+    }
+  }
+  positions = vbos->GetVBO("vertexMC");
+  if (positions && positions->GetCoordShiftAndScaleEnabled())
+  {
+    const std::vector<double>& shift = positions->GetShift();
+    const std::vector<double>& scale = positions->GetScale();
+    this->VBOInverseTransform->Identity();
+    this->VBOInverseTransform->Translate(shift[0], shift[1], shift[2]);
+    this->VBOInverseTransform->Scale(1.0 / scale[0], 1.0 / scale[1], 1.0 / scale[2]);
+    this->VBOInverseTransform->GetTranspose(this->VBOShiftScale);
+  }
+  this->BuildIBO(ren, act, skeleton);
+  this->VBOBuildTime.Modified();
+}
+
+void vtkMultiresolutionPolyDataMapper::UpdateCameraShiftScale(vtkRenderer* ren, vtkActor* act)
+{
+  // Camera-based shift and scale: a new shift needs every leaf's points
+  // uploaded again (as VTK re-uploads its input's), so the vertex buffers
+  // are rebuilt from the leaves this frame.
+  if (this->PauseShiftScale ||
+    (this->ShiftScaleMethod != vtkOpenGLVertexBufferObject::NEAR_PLANE_SHIFT_SCALE &&
+      this->ShiftScaleMethod != vtkOpenGLVertexBufferObject::FOCAL_POINT_SHIFT_SCALE))
+  {
+    return;
+  }
+  vtkOpenGLVertexBufferObject* positions = this->VBOs->GetVBO("vertexMC");
+  if (positions && this->CurrentInput)
+  {
+    positions->SetCamera(ren->GetActiveCamera());
+    positions->SetProp3D(act);
+    positions->UpdateShiftScale(this->CurrentInput->GetPoints()->GetData());
+    if (positions->GetMTime() > positions->GetUploadTime())
+    {
+      this->VBOBuildState.Clear();
+      this->Internal->ForceVertexUpload = true;
+    }
+  }
 }
 
 void vtkMultiresolutionPolyDataMapper::BuildCellTextures(
@@ -1524,7 +1952,7 @@ void vtkMultiresolutionPolyDataMapper::BuildCellTextures(
   // Only the cell map here, and only for the vertices, lines and strips of
   // non-TOM leaves: the textures follow the index buffer's slots and are
   // written with them (AllocateCellTextures, UploadCellTexels).
-  if ((this->HaveCellScalars || this->HaveCellNormals) && this->Internal->MergedHasOtherCells)
+  if ((this->HaveCellScalars || this->HaveCellNormals) && this->Internal->HasOtherCells)
   {
     this->CellCellMap->Update(prims, representation, this->CurrentInput->GetPoints());
   }
@@ -1532,7 +1960,7 @@ void vtkMultiresolutionPolyDataMapper::BuildCellTextures(
 
 void vtkMultiresolutionPolyDataMapper::BuildIBO(vtkRenderer* ren, vtkActor* act, vtkPolyData* poly)
 {
-  if (this->Internal->MergedHasOtherCells)
+  if (this->Internal->HasOtherCells)
   {
     // Vertices, lines and strips of non-TOM leaves keep VTK's index buffers.
     this->Superclass::BuildIBO(ren, act, poly);
@@ -1634,10 +2062,11 @@ size_t vtkMultiresolutionPolyDataMapper::Internals::Stage(Object& object, const 
 }
 
 void vtkMultiresolutionPolyDataMapper::Internals::Emit(const Object& object,
-  const Content& content, size_t used, uint32_t* out, vtkIdType* cells, vtkCellArray* polys) const
+  const Content& content, size_t used, uint32_t* out, vtkIdType* cells) const
 {
   const auto base = static_cast<uint32_t>(object.VertexOffset);
-  const vtkIdType firstCell = this->PolyCellBase + object.PolyOffset;
+  // Cells in leaf order (the order of cell colours): a leaf's polygons follow its vertices and lines.
+  const vtkIdType firstCell = object.CellOffset + object.NumberOfVerts + object.NumberOfLines;
   // Cell data: one cell per primitive; a triangle is 3 lines or 3 corner points.
   const size_t perTriangle = this->Representation == VTK_SURFACE ? 1 : 3;
   auto addCells = [&](vtkIdType cell, size_t count)
@@ -1725,15 +2154,16 @@ void vtkMultiresolutionPolyDataMapper::Internals::Emit(const Object& object,
     {
       vtkIdType npts = 0;
       const vtkIdType* ids = nullptr;
+      vtkCellArray* polys = object.Leaf->GetPolys();
       for (vtkIdType c = 0; c < object.NumberOfPolys; ++c)
       {
-        polys->GetCellAtId(object.PolyOffset + c, npts, ids);
+        polys->GetCellAtId(c, npts, ids);
         for (vtkIdType i = 0; i < npts; ++i)
         {
-          *out++ = static_cast<uint32_t>(ids[i]);
+          *out++ = static_cast<uint32_t>(ids[i]) + base;
           if (this->Representation == VTK_WIREFRAME)
           {
-            *out++ = static_cast<uint32_t>(ids[i + 1 < npts ? i + 1 : 0]);
+            *out++ = static_cast<uint32_t>(ids[i + 1 < npts ? i + 1 : 0]) + base;
           }
         }
         if (cells)
@@ -1891,7 +2321,7 @@ void vtkMultiresolutionPolyDataMapper::Internals::FillDegenerate(
 }
 
 void vtkMultiresolutionPolyDataMapper::Internals::WriteSlot(Object& object,
-  const Content& content, size_t used, size_t extent, vtkCellArray* polys)
+  const Content& content, size_t used, size_t extent)
 {
   // extent: how much of the slot may hold anything but degenerate primitives
   // (its old content, or never written).
@@ -1899,7 +2329,7 @@ void vtkMultiresolutionPolyDataMapper::Internals::WriteSlot(Object& object,
   {
     this->Emit(object, content, used,
       this->Indices.data() + this->PerPrimitive * object.SlotStart,
-      this->CellData ? this->PrimitiveCells.data() + object.SlotStart : nullptr, polys);
+      this->CellData ? this->PrimitiveCells.data() + object.SlotStart : nullptr);
     this->DirtyIndices.push_back(Range{ object.SlotStart, used });
     if (this->CellData)
     {
@@ -1931,7 +2361,7 @@ void vtkMultiresolutionPolyDataMapper::Internals::ClearSlot(Object& object)
 }
 
 bool vtkMultiresolutionPolyDataMapper::Internals::Update(
-  Object& object, const Content& content, double slack, vtkCellArray* polys)
+  Object& object, const Content& content, double slack)
 {
   const size_t used = this->Stage(object, content);
   if (!this->CanPad && used != object.SlotSize)
@@ -1967,7 +2397,7 @@ bool vtkMultiresolutionPolyDataMapper::Internals::Update(
       extent = size;
     }
   }
-  this->WriteSlot(object, content, used, extent, polys);
+  this->WriteSlot(object, content, used, extent);
   // Far below its slot: the end goes back (it is degenerate already).
   const size_t size = this->SlotSizeFor(used, object.FullPrimitives, slack);
   if (object.SlotSize > 2 * size)
@@ -1979,7 +2409,7 @@ bool vtkMultiresolutionPolyDataMapper::Internals::Update(
 }
 
 void vtkMultiresolutionPolyDataMapper::Internals::LayOut(
-  bool viewDependent, double slack, vtkCellArray* polys)
+  bool viewDependent, double slack)
 {
   this->DirtyIndices.clear();
   this->DirtyTexels.clear();
@@ -1996,7 +2426,7 @@ void vtkMultiresolutionPolyDataMapper::Internals::LayOut(
     object.SlotUsed = 0;
     this->SlottedObjects += object.SlotSize > 0 ? 1 : 0;
     this->Tail += object.SlotSize; // slots never exceed full resolution: fits the capacity
-    this->WriteSlot(object, content, used, object.SlotSize, polys);
+    this->WriteSlot(object, content, used, object.SlotSize);
     this->SetRenderedCounts(object, content);
   }
   // Everything drawn is uploaded.
@@ -2110,6 +2540,7 @@ void vtkMultiresolutionPolyDataMapper::PrepareLayout(vtkRenderer* ren, vtkActor*
     object.SlotStart = object.SlotSize = object.SlotUsed = 0;
     object.Written = Content();
   }
+  this->PatchStripOffset();
   Grow(in.Indices, in.PerPrimitive * in.Capacity);
   if (in.CellData)
   {
@@ -2152,7 +2583,6 @@ void vtkMultiresolutionPolyDataMapper::FillIndexBuffer(
   in.UploadedVersion = in.ResolutionVersion;
   ++in.IndexBufferBuildCount;
   in.CompactValid = false;
-  vtkCellArray* polys = this->CurrentInput->GetPolys();
   bool layOut = rebuild || !in.LayoutValid;
   if (layOut)
   {
@@ -2170,7 +2600,7 @@ void vtkMultiresolutionPolyDataMapper::FillIndexBuffer(
       {
         continue; // unchanged: neither extracted nor uploaded
       }
-      if (!in.Update(object, content, this->IndexSlack, polys))
+      if (!in.Update(object, content, this->IndexSlack))
       {
         // No room left: compact and try again; points (which cannot pad)
         // and a buffer full even then are laid out again from scratch.
@@ -2181,7 +2611,7 @@ void vtkMultiresolutionPolyDataMapper::FillIndexBuffer(
         }
         in.Compact(this->IndexSlack);
         compacted = true;
-        if (!in.Update(object, content, this->IndexSlack, polys))
+        if (!in.Update(object, content, this->IndexSlack))
         {
           layOut = true;
           break;
@@ -2197,7 +2627,7 @@ void vtkMultiresolutionPolyDataMapper::FillIndexBuffer(
   }
   if (layOut)
   {
-    in.LayOut(this->ViewDependentRefinement, this->IndexSlack, polys);
+    in.LayOut(this->ViewDependentRefinement, this->IndexSlack);
   }
 
   // Upload the rewritten ranges.
@@ -2324,18 +2754,13 @@ void vtkMultiresolutionPolyDataMapper::AllocateCellTextures(vtkRenderer* ren)
   // VTK looks cell values up by gl_PrimitiveID, which counts the primitives
   // actually drawn, padding included: texel TexelBase + p holds the cell of
   // index-buffer primitive p. Vertices and lines (first) and strips (after
-  // the polygons) of non-TOM leaves keep VTK's layout; they are written here,
-  // the slots' texels with their slots.
+  // the index buffer's capacity, PatchStripOffset) of non-TOM leaves keep
+  // VTK's layout; they are written here, the slots' texels with their slots.
   Internals& in = *this->Internal;
   vtkIdType* offsets = this->CellCellMap->GetPrimitiveOffsets();
-  const size_t mapSize = this->CellCellMap->GetSize();
-  in.TexelBase = in.MergedHasOtherCells ? static_cast<size_t>(offsets[2]) : 0;
-  const bool strips = in.MergedHasOtherCells && this->CurrentInput->GetNumberOfStrips() > 0;
-  in.Texels = in.TexelBase + in.Capacity;
-  if (strips)
-  {
-    in.Texels = std::max(in.Texels, mapSize);
-  }
+  in.TexelBase = in.HasOtherCells ? static_cast<size_t>(offsets[2]) : 0;
+  const size_t mapSize = in.HasOtherCells ? this->CellCellMap->GetSize() : 0;
+  in.Texels = in.TexelBase + in.Capacity + (mapSize > in.TexelBase ? mapSize - in.TexelBase : 0);
   in.Texels = std::max<size_t>(in.Texels, 1); // texture buffers may not be empty
   vtkOpenGLRenderWindow* renWin = static_cast<vtkOpenGLRenderWindow*>(ren->GetRenderWindow());
   const auto texels = static_cast<unsigned int>(in.Texels);
@@ -2393,19 +2818,21 @@ void vtkMultiresolutionPolyDataMapper::UploadCellTexels(size_t begin, size_t end
   {
     return;
   }
+  // Cell (in leaf order, Object::CellOffset) of texel i: the slots' from
+  // their primitives, the other cells' from VTK's map of the skeleton's.
   const size_t trisEnd = in.TexelBase + in.Capacity;
-  const bool strips = in.MergedHasOtherCells && this->CurrentInput->GetNumberOfStrips() > 0;
-  const size_t stripsStart =
-    strips ? static_cast<size_t>(this->CellCellMap->GetPrimitiveOffsets()[3]) : trisEnd;
-  const size_t mapSize = in.MergedHasOtherCells ? this->CellCellMap->GetSize() : 0;
-  // Cell id of texel i.
+  const size_t mapSize = in.HasOtherCells ? this->CellCellMap->GetSize() : 0;
   auto cellOf = [&](size_t i) -> vtkIdType
   {
-    if (i >= in.TexelBase && i < std::min(trisEnd, stripsStart))
+    if (i >= in.TexelBase && i < trisEnd)
     {
       return in.PrimitiveCells[i - in.TexelBase];
     }
-    return i < mapSize ? this->CellCellMap->GetValue(i) : 0;
+    const size_t index = i < in.TexelBase ? i : i - in.Capacity;
+    vtkIdType leafCell = 0;
+    const Internals::Object* object =
+      index < mapSize ? in.ObjectOfOtherCell(this->CellCellMap->GetValue(index), leafCell) : nullptr;
+    return object ? object->CellOffset + leafCell : 0;
   };
 
   if (this->HaveCellScalars && this->Colors && in.CellColors.size() >= 4 * in.Texels)
@@ -2431,15 +2858,21 @@ void vtkMultiresolutionPolyDataMapper::UploadCellTexels(size_t begin, size_t end
     this->CellDataBytesUploaded += static_cast<vtkIdType>(4 * (end - begin));
   }
 
-  vtkDataArray* normals = this->CurrentInput->GetCellData()->GetNormals();
-  if (this->HaveCellNormals && normals && in.CellNormals.size() >= 4 * in.Texels)
+  if (this->HaveCellNormals && this->CurrentInput->GetCellData()->GetNormals() &&
+    in.CellNormals.size() >= 4 * in.Texels)
   {
-    const vtkIdType tuples = normals->GetNumberOfTuples();
-    double normal[3];
+    double normal[3] = { 0.0, 0.0, 1.0 };
     for (size_t i = begin; i < end; ++i)
     {
-      const vtkIdType cell = std::min<vtkIdType>(std::max<vtkIdType>(cellOf(i), 0), tuples - 1);
-      normals->GetTuple(cell, normal);
+      // Each leaf's own cell normals (one lookup per texel: cell normals are rare).
+      const vtkIdType cell = cellOf(i);
+      const Internals::Object* object = in.ObjectOfCell(cell);
+      vtkDataArray* normals = object ? object->Leaf->GetCellData()->GetNormals() : nullptr;
+      const vtkIdType leafCell = object ? cell - object->CellOffset : 0;
+      if (normals && leafCell < normals->GetNumberOfTuples())
+      {
+        normals->GetTuple(leafCell, normal);
+      }
       for (int k = 0; k < 3; ++k)
       {
         in.CellNormals[4 * i + k] = static_cast<float>(normal[k]);
@@ -2559,63 +2992,74 @@ vtkMultiresolutionPolyDataMapper::Internals::ObjectOfVertex(vtkIdType vertex) co
 }
 
 const vtkMultiresolutionPolyDataMapper::Internals::Object*
-vtkMultiresolutionPolyDataMapper::Internals::ObjectOfMergedCell(
+vtkMultiresolutionPolyDataMapper::Internals::ObjectOfOtherCell(
   vtkIdType cell, vtkIdType& leafCell) const
 {
-  // Cells of all leaves in VTK's order: every leaf's verts, then lines,
-  // polys and strips; a leaf numbers its own cells in the same type order.
+  // The skeleton's cells in VTK's order: every leaf's vertices, then lines,
+  // then strips (no polygons); a leaf numbers its own cells verts, lines,
+  // polys, strips.
   const Object* last = this->Objects.empty() ? nullptr : &this->Objects.back();
   if (!last || cell < 0)
   {
     return nullptr;
   }
-  const vtkIdType verts = last->VertOffset + last->NumberOfVerts;
-  const vtkIdType lines = last->LineOffset + last->NumberOfLines;
-  const vtkIdType polys = last->PolyOffset + last->NumberOfPolys;
-  const vtkIdType strips = last->StripOffset + last->NumberOfStrips;
+  const vtkIdType counts[2] = { last->VertOffset + last->NumberOfVerts,
+    last->LineOffset + last->NumberOfLines };
   int type = 0;
   vtkIdType index = cell;
-  for (const vtkIdType count : { verts, lines, polys })
+  while (type < 2 && index >= counts[type])
   {
-    if (index < count)
-    {
-      break;
-    }
-    index -= count;
-    ++type;
+    index -= counts[type++];
   }
-  if (type == 3 && index >= strips)
+  if (type == 2 && index >= last->StripOffset + last->NumberOfStrips)
   {
     return nullptr;
   }
   auto first = [type](const Object& o)
-  { return type == 0 ? o.VertOffset : type == 1 ? o.LineOffset : type == 2 ? o.PolyOffset : o.StripOffset; };
+  { return type == 0 ? o.VertOffset : type == 1 ? o.LineOffset : o.StripOffset; };
   auto count = [type](const Object& o)
-  {
-    return type == 0 ? o.NumberOfVerts
-                     : type == 1 ? o.NumberOfLines : type == 2 ? o.NumberOfPolys : o.NumberOfStrips;
-  };
+  { return type == 0 ? o.NumberOfVerts : type == 1 ? o.NumberOfLines : o.NumberOfStrips; };
+  // The last object starting at or before the index that has cells of this type.
   auto it = std::upper_bound(this->Objects.begin(), this->Objects.end(), index,
     [&](vtkIdType i, const Object& o) { return i < first(o); });
-  // Objects without cells of this type share their first with the next one.
   while (it != this->Objects.begin())
   {
     --it;
-    if (index < first(*it) + count(*it))
+    if (count(*it) > 0)
     {
+      if (index >= first(*it) + count(*it))
+      {
+        return nullptr;
+      }
       const vtkIdType before = type == 0 ? 0
         : type == 1                     ? it->NumberOfVerts
-        : type == 2                     ? it->NumberOfVerts + it->NumberOfLines
                                         : it->NumberOfVerts + it->NumberOfLines + it->NumberOfPolys;
       leafCell = before + index - first(*it);
       return &*it;
     }
-    if (count(*it) > 0)
-    {
-      break;
-    }
   }
   return nullptr;
+}
+
+const vtkMultiresolutionPolyDataMapper::Internals::Object*
+vtkMultiresolutionPolyDataMapper::Internals::ObjectOfCell(vtkIdType cell) const
+{
+  auto it = std::upper_bound(this->Objects.begin(), this->Objects.end(), cell,
+    [](vtkIdType c, const Object& o) { return c < o.CellOffset; });
+  return it == this->Objects.begin() ? nullptr : &*std::prev(it);
+}
+
+void vtkMultiresolutionPolyDataMapper::PatchStripOffset()
+{
+  // VTK numbers the skeleton's strips right after its (no) polygons; they are
+  // drawn after the triangle index buffer, whose primitives (up to its
+  // capacity) come first in gl_PrimitiveID + offset and in the cell textures.
+  Internals& in = *this->Internal;
+  if (in.HasOtherCells)
+  {
+    vtkIdType* offsets = this->CellCellMap->GetPrimitiveOffsets();
+    offsets[3] = offsets[2] + static_cast<vtkIdType>(in.Capacity);
+  }
 }
 
 /// The state of one ProcessSelectorPixelBuffers call: objects by slot, and
@@ -2763,6 +3207,7 @@ void vtkMultiresolutionPolyDataMapper::UpdateMaximumPointCellIds(vtkRenderer* re
   // leaves' own, which can be larger (a large leaf drawn coarse).
   this->Superclass::UpdateMaximumPointCellIds(ren, act);
   vtkHardwareSelector* selector = ren->GetSelector();
+  selector->UpdateMaximumPointId(this->Internal->TotalVertices - 1); // drawn vertex ids
   for (const auto& object : this->Internal->Objects)
   {
     selector->UpdateMaximumPointId(object.NumberOfVertices - 1);
@@ -2793,14 +3238,32 @@ void vtkMultiresolutionPolyDataMapper::ProcessSelectorPixelBuffers(
     return;
   }
   const int pass = sel->GetCurrentPass();
-  if (pass == vtkHardwareSelector::PROCESS_PASS)
-  {
-    this->Superclass::ProcessSelectorPixelBuffers(sel, pixeloffsets, prop);
-    return;
-  }
   const bool pointField = sel->GetFieldAssociation() == vtkDataObject::FIELD_ASSOCIATION_POINTS;
   const unsigned char* pointLow = sel->GetRawPixelBuffer(vtkHardwareSelector::POINT_ID_LOW24);
   const unsigned char* pointHigh = sel->GetRawPixelBuffer(vtkHardwareSelector::POINT_ID_HIGH24);
+  if (pass == vtkHardwareSelector::PROCESS_PASS)
+  {
+    // Process ids from a point array of the leaves, by the drawn vertex.
+    unsigned char* out = sel->GetRawPixelBuffer(pass);
+    if (!sel->GetUseProcessIdFromData() || !this->ProcessIdArrayName || !out || !pointLow)
+    {
+      return;
+    }
+    for (const unsigned int pos : pixeloffsets)
+    {
+      const vtkIdType vertex = ReadPixelId(pointLow, pointHigh, pos);
+      const Internals::Object* object = in.ObjectOfVertex(vertex);
+      vtkUnsignedIntArray* values = object
+        ? vtkArrayDownCast<vtkUnsignedIntArray>(
+            object->Leaf->GetPointData()->GetArray(this->ProcessIdArrayName))
+        : nullptr;
+      if (values && vertex - object->VertexOffset < values->GetNumberOfTuples())
+      {
+        WritePixelId(out, pos, values->GetValue(vertex - object->VertexOffset) + 1, 0);
+      }
+    }
+    return;
+  }
   const unsigned char* cellLow = sel->GetRawPixelBuffer(vtkHardwareSelector::CELL_ID_LOW24);
   const unsigned char* cellHigh = sel->GetRawPixelBuffer(vtkHardwareSelector::CELL_ID_HIGH24);
 
@@ -2809,12 +3272,13 @@ void vtkMultiresolutionPolyDataMapper::ProcessSelectorPixelBuffers(
   vtkCellArray* prims[4] = { this->CurrentInput->GetVerts(), this->CurrentInput->GetLines(),
     this->CurrentInput->GetPolys(), this->CurrentInput->GetStrips() };
   const int representation = static_cast<vtkActor*>(prop)->GetProperty()->GetRepresentation();
-  if (in.MergedHasOtherCells)
+  if (in.HasOtherCells)
   {
     this->CellCellMap->Update(prims, representation, this->CurrentInput->GetPoints());
+    this->PatchStripOffset();
   }
   const size_t triBase =
-    in.MergedHasOtherCells ? static_cast<size_t>(this->CellCellMap->GetPrimitiveOffsets()[2]) : 0;
+    in.HasOtherCells ? static_cast<size_t>(this->CellCellMap->GetPrimitiveOffsets()[2]) : 0;
   Internals::Selection selection(in);
   auto cellHit = [&](unsigned int pos, vtkIdType& leafCell) -> const Internals::Object*
   {
@@ -2823,13 +3287,13 @@ void vtkMultiresolutionPolyDataMapper::ProcessSelectorPixelBuffers(
     {
       return selection.Decode(raw - triBase, leafCell);
     }
-    if (!in.MergedHasOtherCells)
+    if (!in.HasOtherCells)
     {
       return nullptr;
     }
     const vtkIdType merged =
       this->CellCellMap->ConvertOpenGLCellIdToVTKCellId(false, static_cast<vtkIdType>(raw));
-    return in.ObjectOfMergedCell(merged, leafCell);
+    return in.ObjectOfOtherCell(merged, leafCell);
   };
 
   if ((pass == vtkHardwareSelector::POINT_ID_LOW24 ||

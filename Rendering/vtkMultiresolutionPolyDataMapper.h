@@ -12,7 +12,8 @@
  * hundreds of objects drawn separately cost more than the frame budget before
  * a single triangle is rasterized. All leaves are concatenated once into one
  * vertex buffer group (positions, normals, scalars, texture coordinates, in
- * leaf order), and one index buffer holds a *slot* per object: its active
+ * leaf order, appended from the leaves themselves: the mapper keeps no merged
+ * copy of them), and one index buffer holds a *slot* per object: its active
  * triangles (written by the TOM traversal core with the object's vertex
  * offset added), then degenerate triangles (all three indices equal: no
  * fragments) as room to grow (IndexSlack). A frame rewrites only the slots of
@@ -75,10 +76,14 @@
  * first vertex of an object (possibly a culled one).
  * Points have no degenerate form: in the points representation slots fit
  * exactly and a change of any object's point count lays the buffer out
- * again. The merged leaves are a second copy of the input's points and arrays
- * in memory; the index buffer takes up to 12 bytes per full-resolution
- * triangle on the CPU and on the GPU (its capacity), and cell textures 4 or
- * 16 bytes per full-resolution primitive.
+ * again. Memory above the input: the TOM arrays copied for the traversal
+ * (once per distinct mesh: 12 bytes per triangle and 4 per vertex), the
+ * mapped colors (4 bytes per vertex, or per cell), the index buffer (up to
+ * 12 bytes per full-resolution triangle on the CPU and on the GPU: its
+ * capacity) and cell textures (4 or 16 bytes per full-resolution primitive);
+ * the vertex buffers' CPU packing is freed once uploaded, so rebuilding them
+ * (a leaf changed, camera-based shift and scale moved) appends the leaves
+ * again. A change of colors alone re-uploads the color buffer only.
  *
  * @sa vtkTOMPolyDataMapper vtkTimeCriticalRenderer vtkTOMBuilder
  */
@@ -280,9 +285,10 @@ public:
 
   ///@{
   /**
-   * Scalars are mapped from the merged leaves (vtkMapper's versions read
-   * GetInput(), which is null for composite input); with ColorByResolution the
-   * resolution map's colors are returned instead.
+   * Scalars are mapped per leaf with the mapper's lookup table and range into
+   * one array in leaf order (vtkMapper's versions read GetInput(), which is
+   * null for composite input); with ColorByResolution the resolution map's
+   * colors are returned instead.
    */
   using Superclass::MapScalars;
   vtkUnsignedCharArray* MapScalars(double alpha) override;
@@ -318,6 +324,7 @@ protected:
   bool GetNeedToRebuildBufferObjects(vtkRenderer* ren, vtkActor* act) override;
   void BuildBufferObjects(vtkRenderer* ren, vtkActor* act) override;
   void BuildIBO(vtkRenderer* ren, vtkActor* act, vtkPolyData* poly) override;
+  void UpdateCameraShiftScale(vtkRenderer* ren, vtkActor* act) override;
   void BuildCellTextures(
     vtkRenderer* ren, vtkActor* act, vtkCellArray* prims[4], int representation) override;
 
@@ -358,6 +365,10 @@ private:
   void operator=(const vtkMultiresolutionPolyDataMapper&) = delete;
 
   bool IsValidObject(vtkIdType i) const; ///< with an error when not
+  vtkAbstractArray* GetLeafScalars(vtkPolyData* leaf, vtkAbstractArray* common, int cellFlag);
+  vtkUnsignedCharArray* MapLeafScalars(vtkAbstractArray* common, double alpha, int cellFlag);
+  void BuildVertexBuffers(vtkRenderer* ren, vtkActor* act);
+  void PatchStripOffset();
   void ReadObjects(vtkDataObject* input);
   void FillIndexBuffer(vtkRenderer* ren, vtkActor* act, bool rebuild);
   void PrepareLayout(vtkRenderer* ren, vtkActor* act);

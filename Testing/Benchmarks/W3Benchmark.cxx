@@ -13,12 +13,11 @@
  * and colours are its own.
  *
  * Memory, sampled as process RSS and glibc heap in use (mallinfo2: uordblks
- * + hblkhd) at: start; the input data built (before the mapper sees it); a
- * probe of the mapper's merged copy of the leaves (vtkAppendPolyData::
- * ExecuteAppend on the same leaves, measured and freed); the mapper's
- * UpdateObjects() (its copies of the TOM arrays and the merged leaves); the
- * first render (calibration, vertex and index buffers: llvmpipe keeps GL
- * buffers in process memory); the end of the path.
+ * + hblkhd) at: start; the input data built (before the mapper sees it); the
+ * mapper's UpdateObjects() (its copies of the TOM arrays; it keeps no merged
+ * copy of the leaves); the first render (calibration, mapped colors, vertex
+ * and index buffers: llvmpipe keeps GL buffers in process memory); the end of
+ * the path.
  *
  * Per frame: wall-clock time around Render() (+ WaitForCompletion),
  * triangles drawn, predicted time. Prints and writes w3.json.
@@ -30,7 +29,6 @@
 #include "vtkTimeCriticalRenderer.h"
 
 #include <vtkActor.h>
-#include <vtkAppendPolyData.h>
 #include <vtkCellArray.h>
 #include <vtkFieldData.h>
 #include <vtkFloatArray.h>
@@ -542,27 +540,6 @@ int main(int argc, char* argv[])
               << Number(tomSeconds, 3) << " s, input " << Number(inputSeconds, 3) << " s, "
               << Number(inputHeap / MiB, 4) << " MiB heap\n";
 
-    // Probe: the mapper's merged copy of the leaves, built as it builds it.
-    double mergedHeap = NaN, mergedActual = NaN;
-    {
-      std::vector<vtkPolyData*> parts;
-      for (unsigned n = 0; n < blocks->GetNumberOfBlocks(); ++n)
-      {
-        parts.push_back(vtkPolyData::SafeDownCast(blocks->GetBlock(n)));
-      }
-      const Memory before = Sample("merge probe: before");
-      auto merged = vtkSmartPointer<vtkPolyData>::New();
-      vtkNew<vtkAppendPolyData> append;
-      append->ExecuteAppend(merged, parts.data(), static_cast<int>(parts.size()));
-      const Memory after = Sample("merge probe: merged copy built");
-      mergedHeap = after.Heap - before.Heap;
-      mergedActual = 1024.0 * static_cast<double>(merged->GetActualMemorySize());
-      memory.push_back(after);
-      std::cout << "  merged copy of the leaves (probe): " << Number(mergedHeap / MiB, 4)
-                << " MiB heap (" << Number(mergedHeap / sceneTriangles, 4)
-                << " B/triangle); its arrays: " << Number(mergedActual / MiB, 4) << " MiB\n";
-    }
-    memory.push_back(Sample("merge probe freed"));
 
     vtkNew<vtkCamera> camera;
     const FlightPath path(extent, height, frames);
@@ -588,7 +565,7 @@ int main(int argc, char* argv[])
     Clock::time_point t0 = Clock::now();
     mapper->UpdateObjects();
     const double readSeconds = Seconds(t0, Clock::now());
-    memory.push_back(Sample("mapper UpdateObjects (TOM copies + merged leaves)"));
+    memory.push_back(Sample("mapper UpdateObjects (TOM copies)"));
 
     renderer->ResetCameraClippingRange(const_cast<double*>(bounds));
     t0 = Clock::now();
@@ -669,8 +646,7 @@ int main(int argc, char* argv[])
               << Number((first.Heap - input.Heap) / T, 4) << " B/tri); after the flight: RSS "
               << Number((last.RSS - input.RSS) / MiB, 5) << " MiB\n"
               << "  of which mapper UpdateObjects: heap " << Number((objects.Heap - input.Heap) / MiB, 5)
-              << " MiB (merged copy " << Number(mergedHeap / MiB, 5) << " MiB = "
-              << Number(mergedHeap / T, 4) << " B/tri)\n"
+              << " MiB (" << Number((objects.Heap - input.Heap) / T, 4) << " B/tri)\n"
               << "  vertex buffers: GL " << Number(vboGL / MiB, 5) << " MiB (" << Number(vboGL / T, 4)
               << " B/tri), CPU packing vectors " << Number(vboPacked / MiB, 5) << " MiB ("
               << Number(vboPacked / T, 4) << " B/tri); index buffer at full size "
@@ -708,8 +684,7 @@ int main(int argc, char* argv[])
            << ", \"heap_free\": " << Number(memory[m].Free, 12) << "}";
     }
     json << "],\n  \"breakdown_bytes\": {\"input_heap\": " << Number(inputHeap, 12)
-         << ", \"merged_copy_heap\": " << Number(mergedHeap, 12) << ", \"merged_copy_arrays\": "
-         << Number(mergedActual, 12) << ", \"update_objects_heap\": " << Number(objects.Heap - input.Heap, 12)
+         << ", \"update_objects_heap\": " << Number(objects.Heap - input.Heap, 12)
          << ", \"first_render_heap\": " << Number(first.Heap - objects.Heap, 12)
          << ", \"renderer_above_input_rss\": " << Number(first.RSS - input.RSS, 12)
          << ", \"renderer_above_input_heap\": " << Number(first.Heap - input.Heap, 12)
