@@ -27,8 +27,10 @@
 #include "vtkCellData.h"
 #include "vtkCellPicker.h"
 #include "vtkCompositeDataIterator.h"
+#include "vtkFloatArray.h"
 #include "vtkHardwareSelector.h"
 #include "vtkIdTypeArray.h"
+#include "vtkIntArray.h"
 #include "vtkLookupTable.h"
 #include "vtkMath.h"
 #include "vtkMultiBlockDataSet.h"
@@ -1818,4 +1820,131 @@ TEST(MultiresolutionMapperMemory, RebuiltBuffersMatchAFreshMapper)
   compare("range");
   EXPECT_EQ(mapper->GetVertexBufferUploadTime("vertexMC"), positions);
   EXPECT_GT(mapper->GetVertexBufferUploadTime("scalarColor"), colors);
+}
+
+//------------------------------------------------------------------------------
+// Vertices, lines, polygons and strips of a non-TOM leaf next to a TOM: drawn
+// with cell colors like plain polydata mappers of the leaves draw them, and
+// selected with the leaf's own cell ids.
+namespace
+{
+vtkSmartPointer<vtkPolyData> MakeMixedCells()
+{
+  auto mixed = vtkSmartPointer<vtkPolyData>::New();
+  vtkNew<vtkPoints> points;
+  auto add = [&](double x, double y) { return points->InsertNextPoint(x, y, 0.0); };
+  vtkNew<vtkCellArray> verts, lines, polys, strips;
+  verts->InsertNextCell({ add(1.1, 0.7) });
+  verts->InsertNextCell({ add(1.4, 0.7), add(1.7, 0.7) });
+  lines->InsertNextCell({ add(1.1, 0.45), add(1.5, 0.55), add(1.9, 0.45) });
+  lines->InsertNextCell({ add(1.1, 0.3), add(1.9, 0.3) });
+  polys->InsertNextCell({ add(1.1, -0.1), add(1.5, -0.1), add(1.5, 0.2), add(1.1, 0.2) });
+  polys->InsertNextCell({ add(1.6, -0.1), add(1.9, -0.1), add(1.75, 0.2) });
+  std::vector<vtkIdType> strip;
+  for (int k = 0; k < 6; ++k)
+  {
+    strip.push_back(add(1.1 + 0.16 * k, k % 2 ? -0.7 : -0.4)); // counter-clockwise: lit
+  }
+  strips->InsertNextCell(static_cast<vtkIdType>(strip.size()), strip.data());
+  mixed->SetPoints(points);
+  mixed->SetVerts(verts);
+  mixed->SetLines(lines);
+  mixed->SetPolys(polys);
+  mixed->SetStrips(strips);
+  // The arrays of the TOM leaves (only arrays common to all leaves color).
+  vtkNew<vtkFloatArray> height, normals;
+  height->SetName("Height");
+  normals->SetName("Normals");
+  normals->SetNumberOfComponents(3);
+  for (vtkIdType p = 0; p < points->GetNumberOfPoints(); ++p)
+  {
+    height->InsertNextValue(static_cast<float>(points->GetPoint(p)[1]));
+    normals->InsertNextTuple3(0.0, 0.0, 1.0);
+  }
+  mixed->GetPointData()->AddArray(height);
+  mixed->GetPointData()->SetNormals(normals);
+  vtkNew<vtkIntArray> patch;
+  patch->SetName("Patch");
+  for (vtkIdType c = 0; c < mixed->GetNumberOfCells(); ++c)
+  {
+    patch->InsertNextValue(static_cast<int>(c % 5));
+  }
+  mixed->GetCellData()->AddArray(patch);
+  return mixed;
+}
+}
+
+TEST(MultiresolutionMapper, VerticesLinesAndStripsOfNonTOMLeaves)
+{
+  auto tom = MakeTOM(0.5, 40, 28, 0, 0, 0);
+  auto mixed = MakeMixedCells();
+  vtkNew<vtkMultiBlockDataSet> blocks;
+  blocks->SetNumberOfBlocks(2);
+  blocks->SetBlock(0, tom);
+  blocks->SetBlock(1, mixed);
+  vtkNew<vtkMultiresolutionPolyDataMapper> mapper;
+  EventCounter warnings(mapper, vtkCommand::WarningEvent); // the non-TOM leaf
+  mapper->SetInputDataObject(blocks);
+  mapper->UpdateObjects();
+  ASSERT_EQ(mapper->GetNumberOfObjects(), 2);
+  ConfigureColoring(mapper, true);
+  Scene scene(mapper);
+  scene.SetCamera(0.75, 0, 3.5, 0.75, 0, 0);
+  scene.Actor->GetProperty()->SetPointSize(5);
+  scene.Actor->GetProperty()->SetLineWidth(3);
+
+  Scene reference(nullptr);
+  reference.Renderer->RemoveActor(reference.Actor);
+  reference.SetCamera(0.75, 0, 3.5, 0.75, 0, 0);
+  std::vector<vtkSmartPointer<vtkActor>> actors;
+  for (vtkPolyData* leaf : { tom.GetPointer(), mixed.GetPointer() })
+  {
+    vtkNew<vtkPolyDataMapper> plain;
+    plain->SetInputData(leaf);
+    ConfigureColoring(plain, true);
+    auto actor = vtkSmartPointer<vtkActor>::New();
+    actor->SetMapper(plain);
+    reference.Renderer->AddActor(actor);
+    actors.push_back(actor);
+  }
+  for (int representation : { VTK_SURFACE, VTK_WIREFRAME, VTK_POINTS })
+  {
+    scene.Actor->GetProperty()->SetRepresentation(representation);
+    for (auto& actor : actors)
+    {
+      actor->GetProperty()->DeepCopy(scene.Actor->GetProperty());
+    }
+    const std::string name = "MixedCells_" + std::to_string(representation);
+    const std::string image = OutputPath(name + "_multires");
+    const std::string expected = OutputPath(name + "_plain");
+    scene.Save(image);
+    reference.Save(expected);
+    const auto result = tt::CompareImages(image, expected, PixelThreshold);
+    EXPECT_TRUE(tt::Passes(result, Tolerance))
+      << name << ": " << tt::Describe(result) << " (" << image << " against " << expected << ")";
+  }
+
+  // Cell selection: the mixed leaf's cells of every type, by its own ids.
+  scene.Actor->GetProperty()->SetRepresentationToSurface();
+  scene.Render();
+  std::set<int> types;
+  vtkIdType tomCells = 0;
+  for (const auto& pair : SelectArea(scene, vtkDataObject::FIELD_ASSOCIATION_CELLS))
+  {
+    if (pair.first == mapper->GetObjectFlatIndex(1))
+    {
+      ASSERT_LT(pair.second, mixed->GetNumberOfCells());
+      types.insert(mixed->GetCellType(pair.second));
+    }
+    else
+    {
+      EXPECT_EQ(pair.first, mapper->GetObjectFlatIndex(0));
+      EXPECT_LT(pair.second, tom->GetNumberOfCells());
+      ++tomCells;
+    }
+  }
+  EXPECT_EQ(types, (std::set<int>{ VTK_VERTEX, VTK_POLY_VERTEX, VTK_POLY_LINE, VTK_LINE, VTK_QUAD,
+                     VTK_TRIANGLE, VTK_TRIANGLE_STRIP }));
+  EXPECT_GT(tomCells, 100);
+  EXPECT_EQ(warnings.Count, 1);
 }
