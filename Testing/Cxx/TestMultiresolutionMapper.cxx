@@ -1948,3 +1948,60 @@ TEST(MultiresolutionMapper, VerticesLinesAndStripsOfNonTOMLeaves)
   EXPECT_GT(tomCells, 100);
   EXPECT_EQ(warnings.Count, 1);
 }
+
+TEST(MultiresolutionMapper, TextureColorsCameraShiftScaleAndTranslucency)
+{
+  // Interpolated scalars (color texture coordinates mapped per leaf) and
+  // camera-based shift and scale (vertex buffers appended again when the
+  // shift moves): the same images as plain polydata mappers of the leaves.
+  std::vector<vtkSmartPointer<vtkPolyData>> leaves = { MakeTOM(0.5, 40, 28, -0.6, 0, 0),
+    MakeTOM(0.45, 36, 24, 0.6, 0, 0, 6.0) };
+  vtkNew<vtkMultiBlockDataSet> blocks;
+  blocks->SetNumberOfBlocks(2);
+  blocks->SetBlock(0, leaves[0]);
+  blocks->SetBlock(1, leaves[1]);
+  vtkNew<vtkMultiresolutionPolyDataMapper> mapper;
+  mapper->SetInputDataObject(blocks);
+  ConfigureColoring(mapper, false);
+  mapper->InterpolateScalarsBeforeMappingOn();
+  mapper->SetVBOShiftScaleMethod(vtkOpenGLVertexBufferObject::NEAR_PLANE_SHIFT_SCALE);
+  Scene scene(mapper);
+  Scene reference(nullptr);
+  reference.Renderer->RemoveActor(reference.Actor);
+  for (const auto& leaf : leaves)
+  {
+    vtkNew<vtkPolyDataMapper> plain;
+    plain->SetInputData(leaf);
+    ConfigureColoring(plain, false);
+    plain->InterpolateScalarsBeforeMappingOn();
+    vtkOpenGLPolyDataMapper::SafeDownCast(plain)->SetVBOShiftScaleMethod(
+      vtkOpenGLVertexBufferObject::NEAR_PLANE_SHIFT_SCALE);
+    vtkNew<vtkActor> actor;
+    actor->SetMapper(plain);
+    actor->GetProperty()->DeepCopy(scene.Actor->GetProperty());
+    reference.Renderer->AddActor(actor);
+  }
+  for (int view = 0; view < 2; ++view)
+  {
+    scene.SetCamera(0.3 + view, 0.6, 3.0 - view);
+    reference.SetCamera(0.3 + view, 0.6, 3.0 - view);
+    const std::string name = "TextureColors_" + std::to_string(view);
+    const std::string image = OutputPath(name + "_multires");
+    const std::string expected = OutputPath(name + "_plain");
+    scene.Save(image);
+    reference.Save(expected);
+    const auto result = tt::CompareImages(image, expected, PixelThreshold);
+    EXPECT_TRUE(tt::Passes(result, Tolerance))
+      << name << ": " << tt::Describe(result) << " (" << image << " against " << expected << ")";
+    EXPECT_GT(scene.CountForeground(), 5000);
+  }
+  EXPECT_GE(mapper->GetVertexBufferBuildCount(), 2) << "the shift moved with the camera";
+
+  // Translucent colors in one leaf make the actor translucent.
+  EXPECT_FALSE(mapper->HasTranslucentPolygonalGeometry());
+  vtkNew<vtkLookupTable> translucent;
+  translucent->SetAlphaRange(0.5, 0.5);
+  translucent->Build();
+  mapper->SetLookupTable(translucent);
+  EXPECT_TRUE(mapper->HasTranslucentPolygonalGeometry());
+}
