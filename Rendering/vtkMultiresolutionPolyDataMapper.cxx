@@ -347,6 +347,10 @@ struct vtkMultiresolutionPolyDataMapper::Internals
   // The leaves' mapped scalars (MapLeafScalars): when, and for what.
   vtkTimeStamp ColorsTime;
   bool ColorsValid = false;
+  // HasTranslucentPolygonalGeometry's last answer, and when.
+  vtkTimeStamp TranslucentTime;
+  bool TranslucentValid = false;
+  bool Translucent = false;
   double ColorsAlpha = 1.0;
   int ColorsCellFlag = 0;
   bool ColorsTexture = false;
@@ -1385,6 +1389,15 @@ bool vtkMultiresolutionPolyDataMapper::HasTranslucentPolygonalGeometry()
   }
   vtkScalarsToColors* lut = this->GetLookupTable();
   lut->Build();
+  // Asked every frame: the answer is kept until the mapper, its table or the
+  // leaves (a re-read) change, instead of asking every leaf again.
+  const vtkMTimeType newest =
+    std::max({ this->GetMTime(), lut->GetMTime(), in.Skeleton->GetMTime() });
+  if (in.TranslucentValid && in.TranslucentTime > newest)
+  {
+    return in.Translucent;
+  }
+  in.Translucent = false;
   for (const auto& object : in.Objects)
   {
     vtkAbstractArray* scalars = this->GetLeafScalars(object.Leaf, common, cellFlag);
@@ -1394,10 +1407,13 @@ bool vtkMultiresolutionPolyDataMapper::HasTranslucentPolygonalGeometry()
     if (scalars &&
       lut->IsOpaque(scalars, this->ColorMode, this->ArrayComponent, ghosts, ghostsToSkip) == 0)
     {
-      return true;
+      in.Translucent = true;
+      break;
     }
   }
-  return false;
+  in.TranslucentValid = true;
+  in.TranslucentTime.Modified();
+  return in.Translucent;
 }
 
 //------------------------------------------------------------------------------

@@ -2004,4 +2004,8 @@ TEST(MultiresolutionMapper, TextureColorsCameraShiftScaleAndTranslucency)
   translucent->Build();
   mapper->SetLookupTable(translucent);
   EXPECT_TRUE(mapper->HasTranslucentPolygonalGeometry());
+  EXPECT_TRUE(mapper->HasTranslucentPolygonalGeometry()); // the kept answer
+  translucent->SetAlphaRange(1.0, 1.0); // the table changed in place
+  translucent->ForceBuild();
+  EXPECT_FALSE(mapper->HasTranslucentPolygonalGeometry());
 }
