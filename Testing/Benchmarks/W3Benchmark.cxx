@@ -103,6 +103,22 @@ Memory Sample(const std::string& label)
 
 constexpr double MiB = 1024.0 * 1024.0;
 
+/// The process's peak RSS so far (VmHWM), bytes: transient buffers (the
+/// vertex buffers' packing during the first upload) show here only.
+double PeakRSS()
+{
+  std::ifstream status("/proc/self/status");
+  std::string line;
+  while (std::getline(status, line))
+  {
+    if (line.rfind("VmHWM:", 0) == 0)
+    {
+      return 1024.0 * std::stod(line.substr(6)); // kB
+    }
+  }
+  return 0.0;
+}
+
 std::string LoadAverage()
 {
   std::ifstream in("/proc/loadavg");
@@ -572,6 +588,7 @@ int main(int argc, char* argv[])
     TimedRender(window); // calibration + first upload + first frame
     const double firstSeconds = Seconds(t0, Clock::now());
     memory.push_back(Sample("first render (calibration, buffers)"));
+    const double peakFirst = PeakRSS();
 
     for (int w = 0; w < warmup; ++w)
     {
@@ -644,7 +661,9 @@ int main(int argc, char* argv[])
               << Number((first.RSS - input.RSS) / MiB, 5) << " MiB (" << Number((first.RSS - input.RSS) / T, 4)
               << " B/tri), heap " << Number((first.Heap - input.Heap) / MiB, 5) << " MiB ("
               << Number((first.Heap - input.Heap) / T, 4) << " B/tri); after the flight: RSS "
-              << Number((last.RSS - input.RSS) / MiB, 5) << " MiB\n"
+              << Number((last.RSS - input.RSS) / MiB, 5) << " MiB; peak RSS up to the first render "
+              << Number(peakFirst / MiB, 5) << " MiB (" << Number((peakFirst - input.RSS) / T, 4)
+              << " B/tri above the input)\n"
               << "  of which mapper UpdateObjects: heap " << Number((objects.Heap - input.Heap) / MiB, 5)
               << " MiB (" << Number((objects.Heap - input.Heap) / T, 4) << " B/tri)\n"
               << "  vertex buffers: GL " << Number(vboGL / MiB, 5) << " MiB (" << Number(vboGL / T, 4)
@@ -688,6 +707,7 @@ int main(int argc, char* argv[])
          << ", \"first_render_heap\": " << Number(first.Heap - objects.Heap, 12)
          << ", \"renderer_above_input_rss\": " << Number(first.RSS - input.RSS, 12)
          << ", \"renderer_above_input_heap\": " << Number(first.Heap - input.Heap, 12)
+         << ", \"peak_rss_first_render\": " << Number(peakFirst, 12)
          << ", \"vbo_gl\": " << Number(vboGL, 12) << ", \"vbo_packed\": " << Number(vboPacked, 12)
          << ", \"ibo_full\": " << Number(ibo, 12) << ", \"vbo\": {";
     for (int a = 0; a < 3; ++a)
