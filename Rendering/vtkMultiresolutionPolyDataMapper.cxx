@@ -21,11 +21,12 @@
 #include "vtkDataSetAttributes.h"
 #include "vtkFloatArray.h"
 #include "vtkHardwareSelector.h"
+#include "vtkIdTypeArray.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkLight.h"
-#include "vtkLookupTable.h"
 #include "vtkLightCollection.h"
+#include "vtkLookupTable.h"
 #include "vtkMath.h"
 #include "vtkMatrix3x3.h"
 #include "vtkMatrix4x4.h"
@@ -52,9 +53,8 @@
 #include "vtkStateStorage.h"
 #include "vtkTextureObject.h"
 #include "vtkTransform.h"
-#include "vtkIdTypeArray.h"
-#include "vtkUnsignedIntArray.h"
 #include "vtkUnsignedCharArray.h"
+#include "vtkUnsignedIntArray.h"
 
 #include "vtk_glew.h"
 
@@ -218,8 +218,8 @@ struct vtkMultiresolutionPolyDataMapper::Internals
     unsigned int FlatIndex = 0;
     bool IsTOM = false;
     vtkPolyData* Leaf = nullptr; // held by Input (polydata) or Watched (composite)
-    // Its cells by type, and the first of them among all leaves' cells of
-    // that type (VTK's cell order: verts, lines, polys, strips).
+    // Its cells by type, and the first of its vertices, lines and strips
+    // among all leaves' (the skeleton's cells: verts, lines, strips).
     vtkIdType NumberOfVerts = 0;
     vtkIdType NumberOfLines = 0;
     vtkIdType NumberOfStrips = 0;
@@ -233,7 +233,6 @@ struct vtkMultiresolutionPolyDataMapper::Internals
     uint32_t BaseVertexCount = 0;
     vtkIdType VertexOffset = 0;
     vtkIdType NumberOfVertices = 0;
-    vtkIdType PolyOffset = 0; // first of its polygons among the merged polygons
     vtkIdType NumberOfPolys = 0;
     vtkIdType PolyConnectivity = 0;  // point ids of its polygons
     vtkIdType NumberOfTriangles = 0; // at full resolution
@@ -347,13 +346,13 @@ struct vtkMultiresolutionPolyDataMapper::Internals
   // The leaves' mapped scalars (MapLeafScalars): when, and for what.
   vtkTimeStamp ColorsTime;
   bool ColorsValid = false;
+  double ColorsAlpha = 1.0;
+  int ColorsCellFlag = 0;
+  bool ColorsTexture = false;
   // HasTranslucentPolygonalGeometry's last answer, and when.
   vtkTimeStamp TranslucentTime;
   bool TranslucentValid = false;
   bool Translucent = false;
-  double ColorsAlpha = 1.0;
-  int ColorsCellFlag = 0;
-  bool ColorsTexture = false;
   // What the vertex buffers were built from (BuildVertexBuffers).
   vtkStateStorage LeafVBOState;
   vtkStateStorage ColorVBOState;
@@ -605,7 +604,6 @@ void vtkMultiresolutionPolyDataMapper::ReadObjects(vtkDataObject* input)
   vtkIdType vertexOffset = 0;
   vtkIdType vertOffset = 0;
   vtkIdType lineOffset = 0;
-  vtkIdType polyOffset = 0;
   vtkIdType stripOffset = 0;
   vtkIdType cellOffset = 0;
   in.MaxObjectTriangles = 0;
@@ -642,7 +640,6 @@ void vtkMultiresolutionPolyDataMapper::ReadObjects(vtkDataObject* input)
     object.CellOffset = cellOffset;
     object.VertexOffset = vertexOffset;
     object.NumberOfVertices = poly->GetNumberOfPoints();
-    object.PolyOffset = polyOffset;
     object.NumberOfPolys = poly->GetNumberOfPolys();
     object.PolyConnectivity = poly->GetPolys()->GetNumberOfConnectivityIds();
     if (poly->GetNumberOfCells() > 0)
@@ -763,7 +760,6 @@ void vtkMultiresolutionPolyDataMapper::ReadObjects(vtkDataObject* input)
     vertexOffset += object.NumberOfVertices;
     vertOffset += object.NumberOfVerts;
     lineOffset += object.NumberOfLines;
-    polyOffset += object.NumberOfPolys;
     stripOffset += object.NumberOfStrips;
     cellOffset += poly->GetNumberOfCells();
     parts.push_back(poly);
