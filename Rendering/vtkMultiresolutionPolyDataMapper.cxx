@@ -1463,7 +1463,20 @@ void vtkMultiresolutionPolyDataMapper::RenderPiece(vtkRenderer* ren, vtkActor* a
     object.Rewritten = false;
   }
 
-  // As vtkOpenGLPolyDataMapper::RenderPiece, on the merged leaves.
+  // As vtkOpenGLPolyDataMapper::RenderPiece, on the skeleton. Its GPU timer
+  // (TimeToDraw) keys on the input's cells, which the skeleton does not hold:
+  // the same schedule here with the leaves' cells (every render from a
+  // million cells up, at least every 100 renders).
+  if (in.TotalCells > 0)
+  {
+    ++this->TimerQueryCounter;
+    if (this->TimerQueryCounter > 100 ||
+      static_cast<double>(this->TimerQueryCounter) > 1e6 / static_cast<double>(in.TotalCells))
+    {
+      this->TimerQuery->ReusableStart();
+      this->TimerQueryCounter = 0;
+    }
+  }
   this->UpdateCameraShiftScale(ren, act);
   this->RenderPieceStart(ren, act);
   this->RenderPieceDraw(ren, act);
