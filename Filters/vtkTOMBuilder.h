@@ -41,7 +41,9 @@ public:
   ///@}
 
   ///@{
-  /// Keep sharp edges in place as long as other collapses remain. Default on.
+  /// Keep sharp edges: constraint quadrics along them make collapses across
+  /// them cost more (timecritical::TOMBuildOptions::FeatureWeight; the core's
+  /// LockFeatureEdges locks them instead, like boundaries). Default on.
   vtkSetMacro(PreserveFeatureEdges, bool);
   vtkGetMacro(PreserveFeatureEdges, bool);
   vtkBooleanMacro(PreserveFeatureEdges, bool);

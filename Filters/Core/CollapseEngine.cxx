@@ -584,10 +584,14 @@ bool CollapseEngine::ClassifyClosedFan(uint32_t v, float cosFeature)
         (a[0] == 0.f && a[1] == 0.f && a[2] == 0.f) || (b[0] == 0.f && b[1] == 0.f && b[2] == 0.f);
       if (!degenerate && d < cosFeature)
       {
-        this->AddConstraintPlane(v, next[i], Vec3{ a[0], a[1], a[2] }, o.ConstraintWeight);
-        this->AddConstraintPlane(v, next[i], Vec3{ b[0], b[1], b[2] }, o.ConstraintWeight);
-        this->Tris[t0].Flags |= 1u << e0;
-        this->Tris[t1].Flags |= 1u << e1;
+        const double w = o.LockFeatureEdges ? o.ConstraintWeight : o.FeatureWeight;
+        this->AddConstraintPlane(v, next[i], Vec3{ a[0], a[1], a[2] }, w);
+        this->AddConstraintPlane(v, next[i], Vec3{ b[0], b[1], b[2] }, w);
+        if (o.LockFeatureEdges)
+        {
+          this->Tris[t0].Flags |= 1u << e0;
+          this->Tris[t1].Flags |= 1u << e1;
+        }
       }
     }
     if (((this->Tris[t0].Flags >> e0) | (this->Tris[t1].Flags >> e1)) & 1u)
@@ -820,9 +824,10 @@ bool CollapseEngine::ClassifyVertices()
           if (o.PreserveFeatureEdges && Dot(n0, n0) > 0.0 && Dot(n1, n1) > 0.0 &&
             Dot(n0, n1) < cosFeature)
           {
-            this->AddConstraintPlane(v, x, n0, o.ConstraintWeight);
-            this->AddConstraintPlane(v, x, n1, o.ConstraintWeight);
-            constraint = true;
+            const double w = o.LockFeatureEdges ? o.ConstraintWeight : o.FeatureWeight;
+            this->AddConstraintPlane(v, x, n0, w);
+            this->AddConstraintPlane(v, x, n1, w);
+            constraint = o.LockFeatureEdges;
           }
         }
         else

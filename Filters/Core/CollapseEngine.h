@@ -12,6 +12,7 @@
 #include "TOMBuilder.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <functional>
@@ -378,8 +379,8 @@ struct LocalQuadric
 {
   double A00, A01, A02, A11, A12, A22, G0, G1, G2, C;
   Vec3 Origin;
-  double Weight;        // area behind the face planes
-  double InverseWeight; // its inverse
+  double Weight;            // area behind the face planes
+  double InverseRootWeight; // 1 / sqrt(Weight), see CollapseEngine::Cost
 
   LocalQuadric(const QuadricRecord& r, const Vec3& origin)
     : A00(r.A00)
@@ -394,7 +395,7 @@ struct LocalQuadric
     , C(r.C)
     , Origin(origin)
     , Weight(r.FaceWeight)
-    , InverseWeight(r.FaceWeight > 0.f ? 1.0 / r.FaceWeight : 1.0 / std::numeric_limits<float>::min())
+    , InverseRootWeight(1.0 / std::sqrt(double(std::max(r.FaceWeight, std::numeric_limits<float>::min()))))
   {
   }
   /// A d, for an offset d from the origin.
@@ -881,14 +882,19 @@ private:
                                                     : this->Vertices[v].Kind;
   }
   /**
-   * Cost of collapsing the vertex with quadric q into `target`: the mean
-   * squared distance (area-weighted, constraint planes included with their
-   * weights) of the target from the planes the vertex has accumulated, i.e.
-   * the increase of the total quadric error per unit of area. Normalising by
-   * the area makes the order follow distances, which is what the maximum
-   * (Hausdorff) error of a level depends on, rather than area times squared
-   * distance, which favours collapsing small triangles whatever their
-   * deviation. The cost depends only on the source's quadric and the
+   * Cost of collapsing the vertex with quadric q into `target`: the increase
+   * of the quadric error, Q(p) = the area-weighted squared distances of the
+   * target from the planes the vertex has accumulated (constraint planes
+   * included with their weights), divided by the square root of that area A:
+   * the mean squared distance Q/A times the linear size sqrt(A) of the
+   * region. Q alone (Garland-Heckbert) favours small triangles whatever their
+   * deviation; Q/A follows distances only, and lets large, already simplified
+   * regions keep collapsing while their mean stays low, however far their
+   * worst parts move. Measured with the dense Hausdorff distance against the
+   * vertex-subset peers (TOMBenchmark section 4: geometric mean of TOM / best
+   * peer over eight meshes and four resolutions), exponents 0.35 and 0.8 of
+   * A did worse than 0.5, and 0 and 1 worse still.
+   * The cost depends only on the source's quadric and the
    * target's position, so it does not change when the target absorbs other
    * vertices: a collapse changes few keys, which are all kept exact.
    *
@@ -904,7 +910,7 @@ private:
     const Vec3& p = this->Vertices[target].P;
     const Vec3 d = Sub(p, q.Origin);
     const double length2 = Dot(d, d);
-    return q.Evaluate(p) * q.InverseWeight + EdgeLengthWeight * q.Weight * length2;
+    return q.Evaluate(p) * q.InverseRootWeight + EdgeLengthWeight * q.Weight * length2;
   }
   LocalQuadric QuadricOf(uint32_t v) const
   {

@@ -486,10 +486,12 @@ void ExpectCubeIntact(const TriangleMesh& mesh, const TOMBuildResult& r, double 
 
 TEST(TOMBuilder, SharpCubeEdgesAreKept)
 {
-  // The hard rule alone (no constraint quadrics): feature vertices slide
-  // along the cube edges only and the corners stay, until nothing else is left.
+  // The hard rule alone (locked feature edges, no constraint quadrics):
+  // feature vertices slide along the cube edges only and the corners stay,
+  // until nothing else is left.
   const TriangleMesh cube = timecritical::testing::MakeCube(12);
   TOMBuildOptions hard;
+  hard.LockFeatureEdges = true;
   hard.ConstraintWeight = 0.0;
   const TOMBuildResult r = Build(cube, hard);
   ExpectValidResult(cube, r);
@@ -501,8 +503,8 @@ TEST(TOMBuilder, SharpCubeEdgesAreKept)
   // is given up, below its 8 corners.
   EXPECT_EQ(r.VertexCountError[VertexCountAt(r, 0.02)], 0.f);
 
-  // With bumpy faces the defaults keep the edges too, where plain quadrics
-  // start cutting corners.
+  // With bumpy faces the defaults (feature edges weighted, not locked) keep
+  // the edges too, where plain quadrics start cutting corners.
   const double noise = 0.6 / 16;
   const TriangleMesh noisy = NoisyCube(16, noise);
   const TOMBuildResult rn = Build(noisy);
@@ -595,11 +597,11 @@ TEST(TOMBuilder, BoundaryStaysOnItsPolyline)
 TEST(TOMBuilder, NoFlippedTriangles)
 {
   // Sphere around the origin: every triangle faces outwards at every sampled
-  // resolution, down to the tetrahedron.
+  // resolution down to 2% of the triangles.
   const TriangleMesh sphere = timecritical::testing::MakeSphere(4);
   const TOMBuildResult rs = Build(sphere);
   ExpectValidResult(sphere, rs);
-  for (double fraction : { 1.0, 0.5, 0.25, 0.1, 0.02, 0.0 })
+  for (double fraction : { 1.0, 0.5, 0.25, 0.1, 0.02 })
   {
     const uint32_t count = std::max(VertexCountAt(rs, fraction), rs.Mesh.BaseVertexCount);
     const std::vector<uint32_t> tris = Extract(rs, count);
@@ -617,6 +619,21 @@ TEST(TOMBuilder, NoFlippedTriangles)
       ASSERT_GE(Dot(nrm, centroid), -1e-9 * std::sqrt(Dot(nrm, nrm) * Dot(centroid, centroid)))
         << "at " << fraction;
     }
+  }
+  // The base is a tetrahedron of four sphere points, which need not contain
+  // the centre (facing away from the centre stands for "not flipped" only
+  // while the mesh is close to the sphere): it is not turned inside out.
+  {
+    TriangleMesh base;
+    base.Triangles = Extract(rs, rs.Mesh.BaseVertexCount);
+    for (uint32_t v = 0; v < rs.Mesh.BaseVertexCount; ++v)
+    {
+      const V3 p = PointOf(sphere, rs, v);
+      base.Points.insert(base.Points.end(), { p.X, p.Y, p.Z });
+    }
+    ASSERT_EQ(base.NumberOfTriangles(), 4u);
+    EXPECT_GT(timecritical::testing::SignedVolume(base) * timecritical::testing::SignedVolume(sphere),
+      0.0);
   }
   // Bumpy height field: no triangle turns over while the boundary holds, and
   // with a tighter MaximumNormalDeviation none even stands on edge.
