@@ -2,7 +2,9 @@
 // Tests of TOMBuilder: the TOM invariants (checked independently of the
 // validator as well as through it), the geometric guarantees (boundaries and
 // sharp edges kept, no flipped triangles, coarsest meshes), bad inputs,
-// progress and abort, determinism, and the real meshes of the shared folder.
+// progress and abort, determinism, the real meshes of the shared folder, and
+// their quality (dense Hausdorff distance, SurfaceDistance, tested here too).
+#include "SurfaceDistance.h"
 #include "TOMBuilder.h"
 #include "TOMMesh.h"
 #include "TOMTraversal.h"
@@ -1129,4 +1131,206 @@ TEST(TOMBuilderSharedData, CowHomerSpot)
 TEST(TOMBuilderSharedData, IgeaTriangleStrips)
 {
   CheckSharedMesh("igea.ply", 0, 16);
+}
+
+//------------------------------------------------------------------------------
+// SurfaceDistance, the measure of the quality tests below and of TOMBenchmark.
+
+namespace
+{
+/// Squared distance from p to the nearest of the triangles, by brute force.
+double BruteForceDistance2(const TriangleMesh& mesh, const double p[3])
+{
+  double best = std::numeric_limits<double>::infinity();
+  for (size_t t = 0; t < mesh.NumberOfTriangles(); ++t)
+  {
+    TriangleMesh one;
+    for (int c = 0; c < 3; ++c)
+    {
+      const double* q = &mesh.Points[3 * size_t(mesh.Triangles[3 * t + c])];
+      one.Points.insert(one.Points.end(), q, q + 3);
+    }
+    one.Triangles = { 0, 1, 2 };
+    const SurfaceLocator locator(one.Points.data(), one.Triangles.data(), 1);
+    uint32_t hint = 0;
+    best = std::min(best, locator.SquaredDistance(p, hint));
+  }
+  return best;
+}
+}
+
+TEST(SurfaceDistance, PointTriangleRegions)
+{
+  // Each Voronoi region of the triangle (0,0,0), (1,0,0), (0,1,0).
+  const std::vector<double> points = { 0, 0, 0, 1, 0, 0, 0, 1, 0 };
+  const std::vector<uint32_t> triangle = { 0, 1, 2 };
+  const SurfaceLocator locator(points.data(), triangle.data(), 1);
+  const struct
+  {
+    double P[3];
+    double Distance;
+  } cases[] = {
+    { { 0.2, 0.2, 1.0 }, 1.0 },                   // above the face
+    { { 0.2, 0.2, -0.5 }, 0.5 },                  // below it
+    { { -1.0, -1.0, 0.0 }, std::sqrt(2.0) },      // beyond corner 0
+    { { 2.0, 0.0, 1.0 }, std::sqrt(2.0) },        // beyond corner 1
+    { { 0.0, 3.0, 0.0 }, 2.0 },                   // beyond corner 2
+    { { 0.5, -1.0, 0.0 }, 1.0 },                  // beyond edge 0-1
+    { { -2.0, 0.5, 0.0 }, 2.0 },                  // beyond edge 0-2
+    { { 1.0, 1.0, 0.0 }, std::sqrt(0.5) },        // beyond edge 1-2
+    { { 0.25, 0.25, 0.0 }, 0.0 },                 // on the face
+  };
+  for (const auto& c : cases)
+  {
+    uint32_t hint = 0;
+    EXPECT_NEAR(std::sqrt(locator.SquaredDistance(c.P, hint)), c.Distance, 1e-12)
+      << c.P[0] << " " << c.P[1] << " " << c.P[2];
+  }
+  const SurfaceLocator empty(points.data(), triangle.data(), 0);
+  uint32_t hint = 0;
+  EXPECT_TRUE(std::isinf(empty.SquaredDistance(cases[0].P, hint)));
+}
+
+TEST(SurfaceDistance, TreeAgreesWithBruteForce)
+{
+  // A noisy torus and points around it, some far away; any hint.
+  const TriangleMesh torus = timecritical::testing::MakeTorus(24, 12, 3);
+  const SurfaceLocator locator(torus.Points.data(), torus.Triangles.data(), torus.NumberOfTriangles());
+  ASSERT_EQ(locator.GetNumberOfTriangles(), torus.NumberOfTriangles());
+  uint32_t state = 1u;
+  auto next = [&state]() {
+    state = state * 1664525u + 1013904223u;
+    return static_cast<double>(state >> 8) / double(1u << 24);
+  };
+  uint32_t hint = 12345;
+  for (int i = 0; i < 300; ++i)
+  {
+    const double scale = i % 10 == 0 ? 20.0 : 3.0;
+    const double p[3] = { scale * (next() - 0.5), scale * (next() - 0.5), scale * (next() - 0.5) };
+    ASSERT_EQ(locator.SquaredDistance(p, hint), BruteForceDistance2(torus, p)) << i;
+  }
+}
+
+TEST(SurfaceDistance, SamplesAndHausdorffOfAShiftedSheet)
+{
+  // One triangle with k divisions: 3 corners and the (k+1)(k+2)/2 - 3 other
+  // grid points, plus the centroid when k < 3.
+  const std::vector<double> points = { 0, 0, 0, 1, 0, 0, 0, 1, 0 };
+  const std::vector<uint32_t> triangle = { 0, 1, 2 };
+  EXPECT_EQ(SampleSurface(points.data(), 3, triangle.data(), 1, 0.0, 1).size(), 3u * 4);
+  EXPECT_EQ(SampleSurface(points.data(), 3, triangle.data(), 1, 0.0, 2).size(), 3u * 7);
+  // The longest edge is sqrt(2): spacing 0.36 gives k = 4, 15 grid points.
+  EXPECT_EQ(SampleSurface(points.data(), 3, triangle.data(), 1, 0.36, 1).size(), 3u * 15);
+  EXPECT_NEAR(MeanEdgeLength(points.data(), triangle.data(), 1), (2.0 + std::sqrt(2.0)) / 3, 1e-15);
+
+  // A grid and a coarser copy lifted by 0.1 over part of it: 0.1 apart.
+  const TriangleMesh fine = timecritical::testing::MakeGrid(16, 16);
+  TriangleMesh lifted = timecritical::testing::MakeGrid(4, 4);
+  for (size_t i = 0; i < lifted.NumberOfPoints(); ++i)
+  {
+    lifted.Points[3 * i + 2] = lifted.Points[3 * i] > 0.5 ? 0.1 : 0.0;
+  }
+  const SurfaceLocator toFine(fine.Points.data(), fine.Triangles.data(), fine.NumberOfTriangles());
+  const SurfaceLocator toLifted(
+    lifted.Points.data(), lifted.Triangles.data(), lifted.NumberOfTriangles());
+  const std::vector<double> fineSamples = SampleSurface(
+    fine.Points.data(), fine.NumberOfPoints(), fine.Triangles.data(), fine.NumberOfTriangles(), 0.0, 2);
+  const std::vector<double> liftedSamples = SampleSurface(lifted.Points.data(),
+    lifted.NumberOfPoints(), lifted.Triangles.data(), lifted.NumberOfTriangles(), 0.02, 1);
+  EXPECT_NEAR(MaximumDistance(liftedSamples, toFine), 0.1, 1e-12);
+  EXPECT_NEAR(MaximumDistance(fineSamples, toLifted), 0.1, 1e-12);
+  EXPECT_LT(MaximumDistance(fineSamples, toFine), 1e-15); // grid points on the grid
+}
+
+//------------------------------------------------------------------------------
+// Quality regression (issue 10): the TOM's dense symmetric Hausdorff distance
+// at a fraction of the triangles, as TOMBenchmark section 4 measures it,
+// against the best of the vertex-subset peers there (meshoptimizer 0.18 and
+// OpenMesh 9's Decimater in four settings), whose errors are fixed figures
+// here: the peers are deterministic and not linked into the core tests.
+
+namespace
+{
+/// Dense symmetric Hausdorff distance over the bounding-box diagonal between
+/// the welded mesh and its TOM at `fraction` of the triangles.
+double TOMDenseError(const std::string& name, double fraction, const TOMBuildOptions& options = {})
+{
+  const timecritical::testing::SharedMesh shared = timecritical::testing::FindSharedMesh(name);
+  if (!shared.Available)
+  {
+    return -1.0;
+  }
+  namespace tt = timecritical::testing;
+  const TriangleMesh mesh = tt::RemoveUnusedPoints(tt::WeldPoints(tt::LoadMesh(shared.Path)));
+  const TOMBuildResult r = Build(mesh, options);
+  const TOMTraversal traversal(r.Mesh);
+  const uint32_t n =
+    traversal.GetVertexCountForTriangles(traversal.GetTrianglesForResolution(fraction));
+  TriangleMesh simplified;
+  simplified.Triangles = Extract(r, n);
+  for (uint32_t v = 0; v < n; ++v)
+  {
+    const V3 p = PointOf(mesh, r, v);
+    simplified.Points.insert(simplified.Points.end(), { p.X, p.Y, p.Z });
+  }
+  simplified = tt::RemoveUnusedPoints(simplified);
+
+  double lo[3] = { 1e300, 1e300, 1e300 }, hi[3] = { -1e300, -1e300, -1e300 };
+  for (size_t i = 0; i < mesh.Points.size(); ++i)
+  {
+    lo[i % 3] = std::min(lo[i % 3], mesh.Points[i]);
+    hi[i % 3] = std::max(hi[i % 3], mesh.Points[i]);
+  }
+  const double diagonal = std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) +
+    (hi[1] - lo[1]) * (hi[1] - lo[1]) + (hi[2] - lo[2]) * (hi[2] - lo[2]));
+  const double spacing =
+    0.5 * MeanEdgeLength(mesh.Points.data(), mesh.Triangles.data(), mesh.NumberOfTriangles());
+  const SurfaceLocator original(mesh.Points.data(), mesh.Triangles.data(), mesh.NumberOfTriangles());
+  const SurfaceLocator coarse(
+    simplified.Points.data(), simplified.Triangles.data(), simplified.NumberOfTriangles());
+  const double there = MaximumDistance(SampleSurface(mesh.Points.data(), mesh.NumberOfPoints(),
+                                         mesh.Triangles.data(), mesh.NumberOfTriangles(), 0.0, 2),
+    coarse);
+  const double back = MaximumDistance(
+    SampleSurface(simplified.Points.data(), simplified.NumberOfPoints(),
+      simplified.Triangles.data(), simplified.NumberOfTriangles(), spacing, 1),
+    original);
+  return std::max(there, back) / diagonal;
+}
+
+struct QualityCase
+{
+  const char* Mesh;
+  double Fraction;
+  double BestPeer; ///< the best peer's error / diagonal (TOMBenchmark)
+  const char* Peer;
+};
+}
+
+TEST(TOMBuilderQuality, AtMostTheBestVertexSubsetPeer)
+{
+  // The default builder locked 45-degree feature edges and ordered by mean
+  // squared distance: on the low-poly cow it kept the 653 flagged edges and
+  // over-simplified the rest, 3.0 times the best peer's error at 10% (7.1e-2);
+  // fandisk trailed OpenMesh by 1.8-3.9 times. Now at 0.56-1.03 times the
+  // best peer here; the bound, 1.1 times it, leaves room for rounding
+  // differences between compilers that may swap near-equal collapses.
+  const QualityCase cases[] = {
+    { "cow.obj", 0.10, 2.34e-2, "OpenMesh, normal flips 60" },
+    { "cow.obj", 0.05, 4.80e-2, "OpenMesh, normal flips 90" },
+    { "fandisk.obj", 0.25, 8.33e-5, "OpenMesh, normal flips 90" },
+    { "fandisk.obj", 0.05, 1.37e-3, "OpenMesh, normal flips 90" },
+    { "teapot.obj", 0.10, 8.64e-3, "meshoptimizer, LockBorder" },
+    { "homer.obj", 0.05, 1.64e-2, "OpenMesh, normal flips 90" },
+  };
+  for (const QualityCase& c : cases)
+  {
+    const double error = TOMDenseError(c.Mesh, c.Fraction);
+    if (error < 0.0)
+    {
+      GTEST_SKIP() << "shared mesh not available: " << c.Mesh;
+    }
+    EXPECT_LE(error, 1.1 * c.BestPeer)
+      << c.Mesh << " at " << c.Fraction << ": best peer " << c.Peer << " " << c.BestPeer;
+  }
 }
