@@ -1525,8 +1525,8 @@ void CheckSelection(vtkMultiresolutionPolyDataMapper* mapper, Scene& scene,
                        << " selected cells not drawn, e.g. " << example;
   for (size_t i = 0; i < leaves.size(); ++i)
   {
-    // Every object shows many of its cells.
-    EXPECT_GT(selected[i], std::min<size_t>(20, drawn[i].Triangles.size() / 4))
+    // Every object shows many of its cells (points: those of its visible vertices).
+    EXPECT_GE(selected[i], std::min<size_t>(10, drawn[i].Triangles.size() / 8))
       << what << ": object " << i;
   }
 
