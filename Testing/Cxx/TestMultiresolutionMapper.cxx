@@ -2011,3 +2011,60 @@ TEST(MultiresolutionMapper, TextureColorsCameraShiftScaleAndTranslucency)
   translucent->ForceBuild();
   EXPECT_FALSE(mapper->HasTranslucentPolygonalGeometry());
 }
+
+TEST(MultiresolutionMapperSelection, IdArraysOfTheLeaves)
+{
+  // Cell and point id arrays (as ParaView names its original ids) are read
+  // from each leaf at the leaf's own ids.
+  NestedScene data;
+  for (auto& leaf : data.Leaves)
+  {
+    vtkNew<vtkIdTypeArray> cellIds, pointIds;
+    cellIds->SetName("OriginalCellIds");
+    pointIds->SetName("OriginalPointIds");
+    for (vtkIdType c = 0; c < leaf->GetNumberOfCells(); ++c)
+    {
+      cellIds->InsertNextValue(50000 + c);
+    }
+    for (vtkIdType p = 0; p < leaf->GetNumberOfPoints(); ++p)
+    {
+      pointIds->InsertNextValue(70000 + p);
+    }
+    leaf->GetCellData()->AddArray(cellIds);
+    leaf->GetPointData()->AddArray(pointIds);
+  }
+  vtkNew<vtkMultiresolutionPolyDataMapper> mapper;
+  mapper->SetInputDataObject(data.Input);
+  mapper->SetCellIdArrayName("OriginalCellIds");
+  mapper->SetPointIdArrayName("OriginalPointIds");
+  mapper->UpdateObjects();
+  const double r[4] = { 0.4, 0.6, 0.3, 0.5 };
+  mapper->SetObjectResolutions(r, 4);
+  Scene scene(mapper, 500);
+  scene.SetCamera(0, 0, 7);
+  scene.Render();
+  std::map<unsigned int, vtkIdType> objectOfFlat;
+  for (vtkIdType i = 0; i < 4; ++i)
+  {
+    objectOfFlat[mapper->GetObjectFlatIndex(i)] = i;
+  }
+  for (const int association :
+    { vtkDataObject::FIELD_ASSOCIATION_CELLS, vtkDataObject::FIELD_ASSOCIATION_POINTS })
+  {
+    const bool cells = association == vtkDataObject::FIELD_ASSOCIATION_CELLS;
+    const auto pairs = SelectArea(scene, association);
+    EXPECT_GT(pairs.size(), 100u);
+    size_t wrong = 0;
+    for (const auto& pair : pairs)
+    {
+      auto object = objectOfFlat.find(pair.first);
+      const vtkIdType id = pair.second - (cells ? 50000 : 70000);
+      // A TOM draws cells [0, drawn triangles) and points [0, drawn vertices).
+      const bool right = object != objectOfFlat.end() && id >= 0 &&
+        id < (cells ? mapper->GetObjectRenderedTriangles(object->second)
+                    : mapper->GetObjectRenderedVertices(object->second));
+      wrong += right ? 0 : 1;
+    }
+    EXPECT_EQ(wrong, 0u) << (cells ? "cells" : "points");
+  }
+}
