@@ -68,6 +68,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdarg>
+#include <cstddef>
 #include <cstdint>
 #include <cstdio>
 #include <ctime>
@@ -968,6 +969,33 @@ struct QualityReference
   double Spacing = 0.0;
 };
 
+/// MaximumDistance over all cores: the queries are independent and the
+/// maximum does not depend on their order (a third of the quality section's
+/// time on one core).
+double ParallelMaximumDistance(const std::vector<double>& samples, const timecritical::SurfaceLocator& to)
+{
+  const size_t points = samples.size() / 3;
+  const size_t threads =
+    std::max<size_t>(1, std::min<size_t>(std::thread::hardware_concurrency(), points / 4096));
+  std::vector<double> worst(threads, 0.0);
+  std::vector<std::thread> workers;
+  for (size_t k = 0; k < threads; ++k)
+  {
+    workers.emplace_back([&, k] {
+      // Contiguous chunks keep neighbouring samples together (the hint).
+      const auto first = samples.begin() + static_cast<std::ptrdiff_t>(3 * (points * k / threads));
+      const auto last =
+        samples.begin() + static_cast<std::ptrdiff_t>(3 * (points * (k + 1) / threads));
+      worst[k] = timecritical::MaximumDistance(std::vector<double>(first, last), to);
+    });
+  }
+  for (std::thread& worker : workers)
+  {
+    worker.join();
+  }
+  return *std::max_element(worst.begin(), worst.end());
+}
+
 /// Dense and vertex-only distances between the original and a simplification.
 void RelativeHausdorff(const InputMesh& original, const QualityReference& reference,
   const TriangleMesh& simplified, Hausdorff& dense, Hausdorff& vertexOnly)
@@ -979,10 +1007,10 @@ void RelativeHausdorff(const InputMesh& original, const QualityReference& refere
     simplified.NumberOfPoints(), simplified.Triangles.data(), simplified.NumberOfTriangles(),
     reference.Spacing, 1);
   const double d = original.Diagonal;
-  dense.OriginalToSimplified = tc::MaximumDistance(reference.Samples, locator) / d;
-  dense.SimplifiedToOriginal = tc::MaximumDistance(samples, reference.Locator) / d;
-  vertexOnly.OriginalToSimplified = tc::MaximumDistance(original.Mesh.Points, locator) / d;
-  vertexOnly.SimplifiedToOriginal = tc::MaximumDistance(simplified.Points, reference.Locator) / d;
+  dense.OriginalToSimplified = ParallelMaximumDistance(reference.Samples, locator) / d;
+  dense.SimplifiedToOriginal = ParallelMaximumDistance(samples, reference.Locator) / d;
+  vertexOnly.OriginalToSimplified = ParallelMaximumDistance(original.Mesh.Points, locator) / d;
+  vertexOnly.SimplifiedToOriginal = ParallelMaximumDistance(simplified.Points, reference.Locator) / d;
   Require(std::isfinite(dense.Symmetric()) && std::isfinite(vertexOnly.Symmetric()),
     original.Name + ": Hausdorff distance is not finite");
 }
