@@ -364,6 +364,7 @@ struct vtkMultiresolutionPolyDataMapper::Internals
   bool WarnedNonTOM = false;
   bool WarnedBadTree = false;
   bool WarnedNonPolyData = false;
+  bool WarnedSelectionDisplay = false;
   vtkIdType VertexBufferBuildCount = 0;
   vtkIdType IndexBufferBuildCount = 0;
 
@@ -3251,6 +3252,22 @@ void vtkMultiresolutionPolyDataMapper::UpdateMaximumPointCellIds(vtkRenderer* re
     {
       selector->UpdateMaximumCellId(static_cast<vtkIdType>(ids->GetRange()[1]));
     }
+  }
+}
+
+void vtkMultiresolutionPolyDataMapper::BuildSelectionIBO(
+  vtkPolyData*, std::vector<unsigned int> (&indices)[4], vtkIdType)
+{
+  // VTK builds it from its input's cells, which the skeleton does not hold
+  // (and whose ids would be those of full resolution).
+  for (auto& primitive : indices)
+  {
+    primitive.clear();
+  }
+  if (!this->Internal->WarnedSelectionDisplay)
+  {
+    vtkWarningMacro("Selection display (SetSelection) is not supported; hardware selection is.");
+    this->Internal->WarnedSelectionDisplay = true;
   }
 }
 

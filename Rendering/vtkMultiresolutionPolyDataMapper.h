@@ -73,7 +73,9 @@
  * each drawn vertex, the first drawn triangle that uses it.
  *
  * Limitations: selection's point passes draw the padding as points at the
- * first vertex of an object (possibly a culled one).
+ * first vertex of an object (possibly a culled one). Selection display
+ * (vtkMapper::SetSelection, drawn by VTK from its input's cells) is not
+ * supported.
  * Points have no degenerate form: in the points representation slots fit
  * exactly and a change of any object's point count lays the buffer out
  * again. Memory above the input: the TOM arrays copied for the traversal
@@ -341,6 +343,10 @@ protected:
     vtkHardwareSelector* sel, std::vector<unsigned int>& pixeloffsets, vtkProp* prop) override;
   void UpdateMaximumPointCellIds(vtkRenderer* ren, vtkActor* act) override;
   ///@}
+
+  /// Selection display (vtkMapper::SetSelection) is not supported: drawn empty, with one warning.
+  void BuildSelectionIBO(
+    vtkPolyData* poly, std::vector<unsigned int> (&indices)[4], vtkIdType offset) override;
 
   vtkIdType RenderedTriangles = 0;
   vtkIdType RenderedVertices = 0;

@@ -2068,3 +2068,30 @@ TEST(MultiresolutionMapperSelection, IdArraysOfTheLeaves)
     EXPECT_EQ(wrong, 0u) << (cells ? "cells" : "points");
   }
 }
+
+TEST(MultiresolutionMapperSelection, SelectionDisplayIsRefusedWithOneWarning)
+{
+  NestedScene data;
+  vtkNew<vtkMultiresolutionPolyDataMapper> mapper;
+  EventCounter warnings(mapper, vtkCommand::WarningEvent);
+  mapper->SetInputDataObject(data.Input);
+  vtkNew<vtkIdTypeArray> ids;
+  for (vtkIdType c : { 0, 1, 2 })
+  {
+    ids->InsertNextValue(c);
+  }
+  vtkNew<vtkSelectionNode> node;
+  node->SetFieldType(vtkSelectionNode::CELL);
+  node->SetContentType(vtkSelectionNode::INDICES);
+  node->SetSelectionList(ids);
+  vtkNew<vtkSelection> selection;
+  selection->AddNode(node);
+  mapper->SetSelection(selection);
+  Scene scene(mapper);
+  scene.Render();
+  selection->Modified();
+  scene.Render();
+  EXPECT_EQ(warnings.Count, 1);
+  EXPECT_EQ(mapper->GetNumberOfDrawCalls(), 1); // no selection primitives drawn
+  EXPECT_GT(scene.CountForeground(), 1000);
+}
