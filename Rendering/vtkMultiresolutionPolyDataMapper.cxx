@@ -364,7 +364,9 @@ struct vtkMultiresolutionPolyDataMapper::Internals
   bool WarnedNonTOM = false;
   bool WarnedBadTree = false;
   bool WarnedNonPolyData = false;
-  bool WarnedSelectionDisplay = false;
+  // Selection display: the leaf whose nodes BuildSelectionIBO adds.
+  bool SelectionByFlatIndex = false;
+  unsigned int SelectionFlatIndex = 0;
   vtkIdType VertexBufferBuildCount = 0;
   vtkIdType IndexBufferBuildCount = 0;
 
@@ -3258,16 +3260,38 @@ void vtkMultiresolutionPolyDataMapper::UpdateMaximumPointCellIds(vtkRenderer* re
 void vtkMultiresolutionPolyDataMapper::BuildSelectionIBO(
   vtkPolyData*, std::vector<unsigned int> (&indices)[4], vtkIdType)
 {
-  // VTK builds it from its input's cells, which the skeleton does not hold
-  // (and whose ids would be those of full resolution).
-  for (auto& primitive : indices)
+  // VTK builds it from its input's cells, which the skeleton does not hold:
+  // each leaf's instead, with its vertex offset, for the nodes of its flat
+  // index (composite input; a polydata input takes every node).
+  Internals& in = *this->Internal;
+  in.SelectionByFlatIndex = vtkCompositeDataSet::SafeDownCast(in.Input) != nullptr;
+  for (const auto& object : in.Objects)
   {
-    primitive.clear();
+    in.SelectionFlatIndex = object.FlatIndex;
+    this->Superclass::BuildSelectionIBO(object.Leaf, indices, object.VertexOffset);
   }
-  if (!this->Internal->WarnedSelectionDisplay)
+}
+
+void vtkMultiresolutionPolyDataMapper::AddPointIdsToSelectionPrimitives(vtkPolyData* poly,
+  const char* arrayName, unsigned int processId, unsigned int compositeIndex, vtkIdType selectedId)
+{
+  const Internals& in = *this->Internal;
+  if (!in.SelectionByFlatIndex || compositeIndex == in.SelectionFlatIndex)
   {
-    vtkWarningMacro("Selection display (SetSelection) is not supported; hardware selection is.");
-    this->Internal->WarnedSelectionDisplay = true;
+    // VTK's lookup by value keys on a composite id array's values (0 without one).
+    this->Superclass::AddPointIdsToSelectionPrimitives(
+      poly, arrayName, processId, this->CompositeIdArrayName ? compositeIndex : 0, selectedId);
+  }
+}
+
+void vtkMultiresolutionPolyDataMapper::AddCellIdsToSelectionPrimitives(vtkPolyData* poly,
+  const char* arrayName, unsigned int processId, unsigned int compositeIndex, vtkIdType selectedId)
+{
+  const Internals& in = *this->Internal;
+  if (!in.SelectionByFlatIndex || compositeIndex == in.SelectionFlatIndex)
+  {
+    this->Superclass::AddCellIdsToSelectionPrimitives(
+      poly, arrayName, processId, this->CompositeIdArrayName ? compositeIndex : 0, selectedId);
   }
 }
 

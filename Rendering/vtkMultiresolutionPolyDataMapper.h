@@ -74,8 +74,7 @@
  *
  * Limitations: selection's point passes draw the padding as points at the
  * first vertex of an object (possibly a culled one). Selection display
- * (vtkMapper::SetSelection, drawn by VTK from its input's cells) is not
- * supported.
+ * (vtkMapper::SetSelection) outlines the selected cells at full resolution.
  * Points have no degenerate form: in the points representation slots fit
  * exactly and a change of any object's point count lays the buffer out
  * again. Memory above the input: the TOM arrays copied for the traversal
@@ -344,9 +343,19 @@ protected:
   void UpdateMaximumPointCellIds(vtkRenderer* ren, vtkActor* act) override;
   ///@}
 
-  /// Selection display (vtkMapper::SetSelection) is not supported: drawn empty, with one warning.
+  ///@{
+  /**
+   * Selection display (vtkMapper::SetSelection): each leaf's selected cells
+   * or points, by its own ids and the nodes' composite index (its flat
+   * index), drawn at full resolution.
+   */
   void BuildSelectionIBO(
     vtkPolyData* poly, std::vector<unsigned int> (&indices)[4], vtkIdType offset) override;
+  void AddPointIdsToSelectionPrimitives(vtkPolyData* poly, const char* arrayName,
+    unsigned int processId, unsigned int compositeIndex, vtkIdType selectedId) override;
+  void AddCellIdsToSelectionPrimitives(vtkPolyData* poly, const char* arrayName,
+    unsigned int processId, unsigned int compositeIndex, vtkIdType selectedId) override;
+  ///@}
 
   vtkIdType RenderedTriangles = 0;
   vtkIdType RenderedVertices = 0;

@@ -2069,29 +2069,78 @@ TEST(MultiresolutionMapperSelection, IdArraysOfTheLeaves)
   }
 }
 
-TEST(MultiresolutionMapperSelection, SelectionDisplayIsRefusedWithOneWarning)
+TEST(MultiresolutionMapperSelection, SelectionDisplayOutlinesTheLeafCells)
 {
+  // vtkMapper::SetSelection: the cells selected by a node with a leaf's flat
+  // index are outlined over that leaf, and only there.
   NestedScene data;
   vtkNew<vtkMultiresolutionPolyDataMapper> mapper;
-  EventCounter warnings(mapper, vtkCommand::WarningEvent);
   mapper->SetInputDataObject(data.Input);
-  vtkNew<vtkIdTypeArray> ids;
-  for (vtkIdType c : { 0, 1, 2 })
-  {
-    ids->InsertNextValue(c);
-  }
-  vtkNew<vtkSelectionNode> node;
-  node->SetFieldType(vtkSelectionNode::CELL);
-  node->SetContentType(vtkSelectionNode::INDICES);
-  node->SetSelectionList(ids);
-  vtkNew<vtkSelection> selection;
-  selection->AddNode(node);
-  mapper->SetSelection(selection);
+  mapper->UpdateObjects();
+  mapper->SetResolution(0.5);
   Scene scene(mapper);
+  scene.SetCamera(0, 0, 5);
+  scene.Actor->GetProperty()->SetSelectionColor(1.0, 0.0, 1.0, 1.0);
   scene.Render();
-  selection->Modified();
-  scene.Render();
-  EXPECT_EQ(warnings.Count, 1);
-  EXPECT_EQ(mapper->GetNumberOfDrawCalls(), 1); // no selection primitives drawn
-  EXPECT_GT(scene.CountForeground(), 1000);
+  auto pixels = [&]()
+  {
+    std::vector<unsigned char> rgb(3 * ImageSize * ImageSize);
+    unsigned char* read = scene.Window->GetPixelData(0, 0, ImageSize - 1, ImageSize - 1, 0);
+    std::copy(read, read + rgb.size(), rgb.begin());
+    delete[] read;
+    return rgb;
+  };
+  const std::vector<unsigned char> plain = pixels();
+
+  auto select = [&](unsigned int flat)
+  {
+    vtkNew<vtkIdTypeArray> ids;
+    for (vtkIdType c = 0; c < 40; ++c)
+    {
+      ids->InsertNextValue(c);
+    }
+    vtkNew<vtkSelectionNode> node;
+    node->SetFieldType(vtkSelectionNode::CELL);
+    node->SetContentType(vtkSelectionNode::INDICES);
+    node->SetSelectionList(ids);
+    node->GetProperties()->Set(vtkSelectionNode::COMPOSITE_INDEX(), static_cast<int>(flat));
+    vtkNew<vtkSelection> selection;
+    selection->AddNode(node);
+    mapper->SetSelection(selection);
+    scene.Render();
+    return pixels();
+  };
+  // Leaf 0's display box.
+  double box[4] = { 1e9, -1e9, 1e9, -1e9 };
+  const double* b = data.Leaves[0]->GetBounds();
+  for (int corner = 0; corner < 8; ++corner)
+  {
+    scene.Renderer->SetWorldPoint(b[corner & 1], b[2 + ((corner >> 1) & 1)], b[4 + (corner >> 2)], 1);
+    scene.Renderer->WorldToDisplay();
+    const double* d = scene.Renderer->GetDisplayPoint();
+    box[0] = std::min(box[0], d[0]);
+    box[1] = std::max(box[1], d[0]);
+    box[2] = std::min(box[2], d[1]);
+    box[3] = std::max(box[3], d[1]);
+  }
+  const std::vector<unsigned char> outlined = select(mapper->GetObjectFlatIndex(0));
+  EXPECT_EQ(mapper->GetNumberOfDrawCalls(), 2); // the triangles and the outlines
+  int inside = 0, outside = 0;
+  for (int y = 0; y < ImageSize; ++y)
+  {
+    for (int x = 0; x < ImageSize; ++x)
+    {
+      const size_t k = 3 * (static_cast<size_t>(y) * ImageSize + x);
+      if (std::equal(&plain[k], &plain[k] + 3, &outlined[k]))
+      {
+        continue;
+      }
+      const bool in = x >= box[0] - 2 && x <= box[1] + 2 && y >= box[2] - 2 && y <= box[3] + 2;
+      (in ? inside : outside) += 1;
+    }
+  }
+  EXPECT_GT(inside, 30);
+  EXPECT_EQ(outside, 0);
+  // A node of no leaf's flat index outlines nothing.
+  EXPECT_EQ(select(12345), plain);
 }
