@@ -86,8 +86,8 @@
  * (a leaf changed, camera-based shift and scale moved) appends the leaves
  * again. A change of colors alone re-uploads the color buffer only. On the
  * W3 scene (13M triangles in 2,024 objects, llvmpipe, whose GL buffers live
- * in process memory) the renderer takes 54 bytes per triangle above the
- * input (RSS; 44 of heap), 92 with the merged copy it used to keep.
+ * in process memory) the renderer takes 52-54 bytes per triangle above the
+ * input (RSS; 43-46 of heap), 92 with the merged copy it used to keep.
  *
  * @sa vtkTOMPolyDataMapper vtkTimeCriticalRenderer vtkTOMBuilder
  */
