@@ -8,7 +8,8 @@ if (TIMECRITICAL_PLUGIN_BUILDS_MODULES)
       "${CMAKE_CURRENT_LIST_DIR}/../Filters/Core/vtk.module"
       "${CMAKE_CURRENT_LIST_DIR}/../Filters/vtk.module"
       "${CMAKE_CURRENT_LIST_DIR}/../Rendering/Core/vtk.module"
-      "${CMAKE_CURRENT_LIST_DIR}/../Rendering/vtk.module")
+      "${CMAKE_CURRENT_LIST_DIR}/../Rendering/vtk.module"
+      "${CMAKE_CURRENT_LIST_DIR}/Views/vtk.module")
   if (NOT COMMAND timecritical_strict_warnings)
     function (timecritical_strict_warnings)
     endfunction ()
@@ -20,6 +21,8 @@ paraview_add_plugin(TimeCritical
   MODULES
     TimeCritical::Filters
     TimeCritical::Rendering
+    TimeCritical::Views
   ${timecritical_plugin_module_args}
   SERVER_MANAGER_XML
-    "${CMAKE_CURRENT_LIST_DIR}/TimeCriticalFilters.xml")
+    "${CMAKE_CURRENT_LIST_DIR}/TimeCriticalFilters.xml"
+    "${CMAKE_CURRENT_LIST_DIR}/TimeCriticalViews.xml")

@@ -749,6 +749,10 @@ void vtkTimeCriticalRenderer::StillRender()
 
 double vtkTimeCriticalRenderer::GetEffectiveTargetFrameTime()
 {
+  if (this->StillRendering)
+  {
+    return Infinity;
+  }
   if (this->UseDesiredUpdateRate && this->RenderWindow)
   {
     const double rate = this->RenderWindow->GetDesiredUpdateRate();
@@ -783,7 +787,7 @@ void vtkTimeCriticalRenderer::DeviceRender()
     in.FrameStartValid = true;
   }
 
-  const double target = in.StillRequested ? Infinity : this->GetEffectiveTargetFrameTime();
+  const double target = (in.StillRequested || this->StillRendering) ? Infinity : this->GetEffectiveTargetFrameTime();
   const bool still = !std::isfinite(target);
   in.EffectiveTarget = target;
 
@@ -1365,6 +1369,7 @@ void vtkTimeCriticalRenderer::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ViewingDistance: " << this->ViewingDistance << "\n";
   os << indent << "StaticPixelsPerTriangle: " << this->StaticPixelsPerTriangle << "\n";
   os << indent << "UseDesiredUpdateRate: " << this->UseDesiredUpdateRate << "\n";
+  os << indent << "StillRendering: " << this->StillRendering << "\n";
   os << indent << "StillUpdateRateThreshold: " << this->StillUpdateRateThreshold << "\n";
   os << indent << "AutomaticCalibration: " << this->AutomaticCalibration << "\n";
   os << indent << "OnlineCalibration: " << this->OnlineCalibration << "\n";

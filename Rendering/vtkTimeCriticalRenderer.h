@@ -107,8 +107,8 @@ public:
    * The target the next frame will be planned for, in seconds: 1 /
    * DesiredUpdateRate of the render window with UseDesiredUpdateRate on,
    * else TargetFrameTime; +infinity when the next frame is a still frame
-   * (a rate at or below StillUpdateRateThreshold: every object in full,
-   * whatever it costs). GetLastTargetFrameTime() is that of the last frame.
+   * (StillRendering on, or a rate at or below StillUpdateRateThreshold:
+   * every object in full, whatever it costs). GetLastTargetFrameTime() is that of the last frame.
    */
   double GetEffectiveTargetFrameTime();
 
@@ -194,6 +194,18 @@ public:
 
   /// Render the window once with every object at full resolution.
   void StillRender();
+
+  ///@{
+  /**
+   * While on, every render is a still frame: every object at full
+   * resolution, as StillRender() draws. For applications that decide
+   * themselves which renders are still (ParaView's still renders: at rest,
+   * screenshots). Default off.
+   */
+  vtkSetMacro(StillRendering, bool);
+  vtkGetMacro(StillRendering, bool);
+  vtkBooleanMacro(StillRendering, bool);
+  ///@}
 
   ///@{
   /**
@@ -372,6 +384,7 @@ protected:
   double ViewingDistance = 0.6;
   double StaticPixelsPerTriangle = 8.0;
   bool UseDesiredUpdateRate = false;
+  bool StillRendering = false;
   double StillUpdateRateThreshold = 0.001;
   bool AutomaticCalibration = true;
   bool OnlineCalibration = true;

@@ -1,0 +1,429 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtkPVTimeCriticalRenderView.h"
+
+#include "vtkActor.h"
+#include "vtkActorCollection.h"
+#include "vtkCallbackCommand.h"
+#include "vtkCollectionIterator.h"
+#include "vtkCommand.h"
+#include "vtkMultiProcessController.h"
+#include "vtkMultiresolutionPolyDataMapper.h"
+#include "vtkObjectFactory.h"
+#include "vtkObjectFactoryCollection.h"
+#include "vtkOpenGLRenderer.h"
+#include "vtkPVCompositeRepresentation.h"
+#include "vtkPVProcessWindow.h"
+#include "vtkPVSession.h"
+#include "vtkProcessModule.h"
+#include "vtkTextProperty.h"
+#include "vtkTimeCriticalCompositeRepresentation.h"
+#include "vtkTimeCriticalRenderer.h"
+#include "vtkVersion.h"
+
+#include <cmath>
+#include <cstring>
+#include <iomanip>
+#include <limits>
+#include <sstream>
+#include <utility>
+#include <vector>
+
+namespace
+{
+/**
+ * vtkPVRenderView creates its renderer inside its constructor (through
+ * vtkRenderViewBase) and wires it into the synchronized renderers, the
+ * selector, the lights, the culler and the widgets. Replacing it afterwards
+ * would mean redoing all of that, so instead the view is constructed while
+ * this factory answers vtkRenderer::New(): ParaView 5.11's constructor asks
+ * for the orientation axes' renderer first and the view's own second (after
+ * the process window's, which RendererOverrideScope creates beforehand where
+ * the view will use one), so the second is a vtkTimeCriticalRenderer and
+ * every other one a vtkOpenGLRenderer, as VTK's own factory would give. The view's constructor
+ * checks the result (an error names a ParaView that builds in another
+ * order). The other factories' vtkRenderer overrides are disabled for that
+ * time only (the first registered factory would otherwise win) and restored
+ * exactly.
+ */
+class TimeCriticalRendererFactory : public vtkObjectFactory
+{
+public:
+  static TimeCriticalRendererFactory* New()
+  {
+    auto* factory = new TimeCriticalRendererFactory;
+    factory->InitializeObjectBase();
+    return factory;
+  }
+  vtkTypeMacro(TimeCriticalRendererFactory, vtkObjectFactory);
+  const char* GetVTKSourceVersion() override { return VTK_SOURCE_VERSION; }
+  const char* GetDescription() override
+  {
+    return "TimeCritical: the renderer of vtkPVTimeCriticalRenderView";
+  }
+
+  static constexpr int ViewRendererRequest = 2; // 1-based, see the class comment
+  static int Requests;
+
+protected:
+  TimeCriticalRendererFactory()
+  {
+    this->RegisterOverride("vtkRenderer", "vtkTimeCriticalRenderer",
+      "the renderer of vtkPVTimeCriticalRenderView", 1, &TimeCriticalRendererFactory::Create);
+  }
+
+private:
+  static vtkObject* Create()
+  {
+    if (++Requests == ViewRendererRequest)
+    {
+      return vtkTimeCriticalRenderer::New();
+    }
+    return vtkOpenGLRenderer::New();
+  }
+};
+int TimeCriticalRendererFactory::Requests = 0;
+
+/// Installs TimeCriticalRendererFactory for the lifetime of the object.
+class RendererOverrideScope
+{
+public:
+  RendererOverrideScope()
+  {
+    // Views of batch and server processes draw into the process window,
+    // created (with a renderer of its own) by the first view: create it
+    // now, so that its renderer is not counted.
+    if (vtkProcessModule::GetProcessModule())
+    {
+      switch (vtkProcessModule::GetProcessType())
+      {
+        case vtkProcessModule::PROCESS_SERVER:
+        case vtkProcessModule::PROCESS_RENDER_SERVER:
+        case vtkProcessModule::PROCESS_BATCH:
+          vtkPVProcessWindow::GetRenderWindow();
+          break;
+        default:
+          break;
+      }
+    }
+    vtkObjectFactoryCollection* factories = vtkObjectFactory::GetRegisteredFactories();
+    vtkCollectionSimpleIterator it;
+    factories->InitTraversal(it);
+    while (vtkObjectFactory* factory = factories->GetNextObjectFactory(it))
+    {
+      for (int i = 0; i < factory->GetNumberOfOverrides(); ++i)
+      {
+        if (std::strcmp(factory->GetClassOverrideName(i), "vtkRenderer") == 0 &&
+          factory->GetEnableFlag(i))
+        {
+          this->Disabled.emplace_back(factory, factory->GetClassOverrideWithName(i));
+        }
+      }
+    }
+    for (const auto& entry : this->Disabled)
+    {
+      entry.first->SetEnableFlag(0, "vtkRenderer", entry.second.c_str());
+    }
+    TimeCriticalRendererFactory::Requests = 0;
+    vtkObjectFactory::RegisterFactory(this->Factory);
+  }
+  ~RendererOverrideScope()
+  {
+    vtkObjectFactory::UnRegisterFactory(this->Factory);
+    for (const auto& entry : this->Disabled)
+    {
+      entry.first->SetEnableFlag(1, "vtkRenderer", entry.second.c_str());
+    }
+  }
+  RendererOverrideScope(const RendererOverrideScope&) = delete;
+  RendererOverrideScope& operator=(const RendererOverrideScope&) = delete;
+
+private:
+  vtkNew<TimeCriticalRendererFactory> Factory;
+  std::vector<std::pair<vtkObjectFactory*, std::string>> Disabled;
+};
+
+/// Start-up calibration re-renders the window on this process alone: safe
+/// only where no other process composites or mirrors its renders.
+bool CalibrationIsSafeHere()
+{
+  vtkMultiProcessController* global = vtkMultiProcessController::GetGlobalController();
+  if (global && global->GetNumberOfProcesses() > 1)
+  {
+    return false;
+  }
+  vtkProcessModule* pm = vtkProcessModule::GetProcessModule();
+  if (!pm)
+  {
+    return true; // plain VTK use of the class
+  }
+  switch (vtkProcessModule::GetProcessType())
+  {
+    case vtkProcessModule::PROCESS_BATCH:
+      return true;
+    case vtkProcessModule::PROCESS_CLIENT:
+    {
+      // The builtin session has no separate server to talk to.
+      auto* session = vtkPVSession::SafeDownCast(pm->GetActiveSession());
+      return !session || !session->GetController(vtkPVSession::DATA_SERVER);
+    }
+    default:
+      return false;
+  }
+}
+
+std::string WithThousands(vtkIdType value)
+{
+  std::string digits = std::to_string(value);
+  for (int i = static_cast<int>(digits.size()) - 3; i > 0; i -= 3)
+  {
+    digits.insert(static_cast<size_t>(i), ",");
+  }
+  return digits;
+}
+} // namespace
+
+//------------------------------------------------------------------------------
+vtkPVTimeCriticalRenderView* vtkPVTimeCriticalRenderView::New()
+{
+  if (vtkObject* overridden = vtkObjectFactory::CreateInstance("vtkPVTimeCriticalRenderView"))
+  {
+    return static_cast<vtkPVTimeCriticalRenderView*>(overridden);
+  }
+  RendererOverrideScope scope;
+  auto* view = new vtkPVTimeCriticalRenderView;
+  view->InitializeObjectBase();
+  return view;
+}
+
+//------------------------------------------------------------------------------
+vtkPVTimeCriticalRenderView::vtkPVTimeCriticalRenderView()
+{
+  vtkTimeCriticalRenderer* renderer = this->GetTimeCriticalRenderer();
+  if (!renderer)
+  {
+    vtkErrorMacro("The render view's renderer is a "
+      << this->GetRenderer()->GetClassName()
+      << ", not a vtkTimeCriticalRenderer: this ParaView creates its renderer in another way "
+         "than TimeCritical expects; frames are drawn without a budget.");
+  }
+  else if (!CalibrationIsSafeHere())
+  {
+    renderer->AutomaticCalibrationOff();
+  }
+  this->Superclass::SetLODRenderingThreshold(std::numeric_limits<double>::max());
+
+  vtkTextProperty* text = this->StatisticsActor->GetTextProperty();
+  text->SetFontSize(14);
+  text->SetJustificationToLeft();
+  text->SetVerticalJustificationToTop();
+  text->SetColor(1.0, 1.0, 1.0);
+  text->SetBackgroundColor(0.0, 0.0, 0.0);
+  text->SetBackgroundOpacity(0.5);
+  this->StatisticsActor->GetPositionCoordinate()->SetCoordinateSystemToNormalizedViewport();
+  this->StatisticsActor->SetPosition(0.01, 0.99);
+  this->StatisticsActor->SetVisibility(0);
+  this->StatisticsActor->SetPickable(0);
+  this->GetNonCompositedRenderer()->AddActor(this->StatisticsActor);
+  // The 2D renderer draws after the time-critical one in the same window
+  // render, so its start is when the frame's plan is known.
+  this->GetNonCompositedRenderer()->AddObserver(
+    vtkCommand::StartEvent, this, &vtkPVTimeCriticalRenderView::UpdateStatisticsText);
+}
+
+//------------------------------------------------------------------------------
+vtkPVTimeCriticalRenderView::~vtkPVTimeCriticalRenderView() = default;
+
+//------------------------------------------------------------------------------
+vtkTimeCriticalRenderer* vtkPVTimeCriticalRenderView::GetTimeCriticalRenderer()
+{
+  return vtkTimeCriticalRenderer::SafeDownCast(this->GetRenderer());
+}
+
+//------------------------------------------------------------------------------
+// Forwarding. Each setter reports a missing time-critical renderer once (in
+// the constructor) and does nothing then.
+#define TIMECRITICAL_FORWARD(setter, type, expression)                                           \
+  void vtkPVTimeCriticalRenderView::setter(type value)                                           \
+  {                                                                                              \
+    if (vtkTimeCriticalRenderer* renderer = this->GetTimeCriticalRenderer())                     \
+    {                                                                                            \
+      expression;                                                                                \
+      this->Modified();                                                                          \
+    }                                                                                            \
+  }
+
+TIMECRITICAL_FORWARD(SetTargetFrameTimeMilliseconds, double,
+  renderer->SetTargetFrameTime(value / 1000.0))
+TIMECRITICAL_FORWARD(SetOptimizationTimeLimitMilliseconds, double,
+  renderer->SetOptimizationTimeLimit(value / 1000.0))
+TIMECRITICAL_FORWARD(SetPolicy, int, renderer->SetPolicy(value))
+TIMECRITICAL_FORWARD(SetDegradationFamily, int, renderer->SetDegradationFamily(value))
+TIMECRITICAL_FORWARD(SetUseVelocity, bool, renderer->SetUseVelocity(value))
+TIMECRITICAL_FORWARD(SetUseEccentricity, bool, renderer->SetUseEccentricity(value))
+TIMECRITICAL_FORWARD(SetViewDependentRefinement, bool, renderer->SetViewDependentRefinement(value))
+TIMECRITICAL_FORWARD(SetRefinementMode, int, renderer->SetRefinementMode(value))
+TIMECRITICAL_FORWARD(SetPixelThreshold, double, renderer->SetPixelThreshold(value))
+TIMECRITICAL_FORWARD(SetBackFaceSimplification, bool, renderer->SetBackFaceSimplification(value))
+TIMECRITICAL_FORWARD(SetSilhouetteRefinement, bool, renderer->SetSilhouetteRefinement(value))
+TIMECRITICAL_FORWARD(SetHighlightRefinement, bool, renderer->SetHighlightRefinement(value))
+TIMECRITICAL_FORWARD(SetRefinementTimeLimitMilliseconds, double,
+  renderer->SetRefinementTimeLimit(value / 1000.0))
+#undef TIMECRITICAL_FORWARD
+
+double vtkPVTimeCriticalRenderView::GetTargetFrameTimeMilliseconds()
+{
+  vtkTimeCriticalRenderer* renderer = this->GetTimeCriticalRenderer();
+  return renderer ? renderer->GetTargetFrameTime() * 1000.0 : 0.0;
+}
+
+double vtkPVTimeCriticalRenderView::GetOptimizationTimeLimitMilliseconds()
+{
+  vtkTimeCriticalRenderer* renderer = this->GetTimeCriticalRenderer();
+  return renderer ? renderer->GetOptimizationTimeLimit() * 1000.0 : 0.0;
+}
+
+int vtkPVTimeCriticalRenderView::GetPolicy()
+{
+  vtkTimeCriticalRenderer* renderer = this->GetTimeCriticalRenderer();
+  return renderer ? renderer->GetPolicy() : -1;
+}
+
+int vtkPVTimeCriticalRenderView::GetDegradationFamily()
+{
+  vtkTimeCriticalRenderer* renderer = this->GetTimeCriticalRenderer();
+  return renderer ? renderer->GetDegradationFamily() : -1;
+}
+
+bool vtkPVTimeCriticalRenderView::GetUseVelocity()
+{
+  vtkTimeCriticalRenderer* renderer = this->GetTimeCriticalRenderer();
+  return renderer && renderer->GetUseVelocity();
+}
+
+bool vtkPVTimeCriticalRenderView::GetUseEccentricity()
+{
+  vtkTimeCriticalRenderer* renderer = this->GetTimeCriticalRenderer();
+  return renderer && renderer->GetUseEccentricity();
+}
+
+//------------------------------------------------------------------------------
+void vtkPVTimeCriticalRenderView::SetShowStatistics(bool on)
+{
+  if (this->ShowStatistics != on)
+  {
+    this->ShowStatistics = on;
+    this->StatisticsActor->SetVisibility(on ? 1 : 0);
+    this->Modified();
+  }
+}
+
+void vtkPVTimeCriticalRenderView::SetLODRenderingThreshold(double)
+{
+  // The frame-time budget replaces ParaView's single-level LOD in this view.
+}
+
+//------------------------------------------------------------------------------
+void vtkPVTimeCriticalRenderView::Render(bool interactive, bool skip_rendering)
+{
+  if (vtkTimeCriticalRenderer* renderer = this->GetTimeCriticalRenderer())
+  {
+    renderer->SetStillRendering(!interactive && this->FullResolutionStillRenders);
+    vtkActorCollection* actors = renderer->GetActors();
+    vtkCollectionSimpleIterator it;
+    actors->InitTraversal(it);
+    while (vtkActor* actor = actors->GetNextActor(it))
+    {
+      if (auto* mapper = vtkMultiresolutionPolyDataMapper::SafeDownCast(actor->GetMapper()))
+      {
+        mapper->SetColorByResolution(this->ColorByResolution);
+      }
+    }
+  }
+  this->Superclass::Render(interactive, skip_rendering);
+}
+
+//------------------------------------------------------------------------------
+void vtkPVTimeCriticalRenderView::AddRepresentationInternal(vtkDataRepresentation* rep)
+{
+  if (!this->WarnedAboutOtherRepresentations && rep->IsA("vtkPVCompositeRepresentation") &&
+    !rep->IsA("vtkTimeCriticalCompositeRepresentation"))
+  {
+    this->WarnedAboutOtherRepresentations = true;
+    vtkWarningMacro("Data that is not polygonal (or is shown with a representation other than "
+                    "the time-critical surface) is drawn by ParaView's standard "
+                    "representations in this view: at full resolution, as a fixed cost of "
+                    "every frame, outside the time-critical control.");
+  }
+  this->Superclass::AddRepresentationInternal(rep);
+}
+
+//------------------------------------------------------------------------------
+std::string vtkPVTimeCriticalRenderView::GetStatisticsText()
+{
+  vtkTimeCriticalRenderer* renderer = this->GetTimeCriticalRenderer();
+  if (!renderer)
+  {
+    return "Time-critical rendering unavailable (see the error messages)";
+  }
+  vtkIdType total = 0;
+  const vtkIdType objects = renderer->GetNumberOfObjects();
+  for (vtkIdType i = 0; i < objects; ++i)
+  {
+    auto* mapper =
+      vtkMultiresolutionPolyDataMapper::SafeDownCast(renderer->GetObjectActor(i)->GetMapper());
+    if (mapper)
+    {
+      total += mapper->GetObjectNumberOfTriangles(renderer->GetObjectIndex(i));
+    }
+  }
+  const vtkIdType drawn = renderer->GetObjectTrianglesDrawn();
+  std::ostringstream text;
+  text << std::fixed << std::setprecision(1);
+  if (renderer->GetLastRenderWasStill())
+  {
+    text << "Still frame: full resolution\n";
+  }
+  else
+  {
+    text << "Target " << renderer->GetLastTargetFrameTime() * 1000.0 << " ms, predicted "
+         << renderer->GetPredictedFrameTime() * 1000.0 << " ms\n";
+  }
+  const double measured = renderer->GetMeasuredFrameTime();
+  text << "Last frame measured: ";
+  if (std::isfinite(measured))
+  {
+    text << measured * 1000.0 << " ms\n";
+  }
+  else
+  {
+    text << "-\n";
+  }
+  text << "Triangles: " << WithThousands(drawn) << " of " << WithThousands(total);
+  if (total > 0)
+  {
+    text << " (" << 100.0 * static_cast<double>(drawn) / static_cast<double>(total) << "%)";
+  }
+  text << "\nObjects: " << WithThousands(objects - renderer->GetNumberOfCulledObjects())
+       << " drawn, " << WithThousands(renderer->GetNumberOfCulledObjects()) << " culled\n";
+  text << std::setprecision(2) << "Optimizer: " << renderer->GetOptimizationTime() * 1000.0
+       << " ms, " << renderer->GetOptimizationIterations() << " iterations";
+  return text.str();
+}
+
+void vtkPVTimeCriticalRenderView::UpdateStatisticsText()
+{
+  if (this->ShowStatistics)
+  {
+    this->StatisticsActor->SetInput(this->GetStatisticsText().c_str());
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkPVTimeCriticalRenderView::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "ColorByResolution: " << this->ColorByResolution << "\n";
+  os << indent << "FullResolutionStillRenders: " << this->FullResolutionStillRenders << "\n";
+  os << indent << "ShowStatistics: " << this->ShowStatistics << "\n";
+  os << indent << "TimeCriticalRenderer: " << this->GetTimeCriticalRenderer() << "\n";
+}

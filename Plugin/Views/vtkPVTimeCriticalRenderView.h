@@ -1,0 +1,129 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @class   vtkPVTimeCriticalRenderView
+ * @brief   ParaView render view that holds a frame-time budget (server side of "TimeCriticalRenderView")
+ *
+ * A vtkPVRenderView whose renderer is a vtkTimeCriticalRenderer: everything a
+ * Render View does (cameras, interaction, colouring, scalar bars, annotations,
+ * compositing) works as usual, and the surfaces shown with
+ * vtkTimeCriticalSurfaceRepresentation (the default representation of this
+ * view for polygonal data) are drawn at the resolutions the renderer's
+ * optimizer chooses so that a frame fits TargetFrameTime.
+ *
+ * Interactive renders (the user drags) are time-budgeted; still renders (at
+ * rest, screenshots, Render() in Python) draw every object at full resolution
+ * unless FullResolutionStillRenders is off, which budgets them too (for
+ * camera paths scripted in Python). ParaView's own interactive LOD (one
+ * decimated copy switched on above LODThreshold) is off in this view: the
+ * budget replaces it, and SetLODRenderingThreshold() has no effect.
+ *
+ * ShowStatistics shows the renderer's statistics of the last frame in the
+ * view (measured and predicted frame time, triangles drawn of the total,
+ * objects drawn and culled, optimizer time).
+ *
+ * Parallel (pvbatch, pvserver with several ranks): each rank plans its own
+ * objects. Start-up calibration renders would be composited by every rank and
+ * must not run on one rank alone, so with more than one rank the cost model
+ * starts from this machine class's defaults and learns from every measured
+ * frame, compositing included (the time from the window's start to its end
+ * of render, of which compositing is part, is what each rank's model fits).
+ *
+ * @sa vtkTimeCriticalRenderer vtkTimeCriticalSurfaceRepresentation
+ */
+#ifndef vtkPVTimeCriticalRenderView_h
+#define vtkPVTimeCriticalRenderView_h
+
+#include "TimeCriticalViewsModule.h" // for export macro
+#include "vtkPVRenderView.h"
+
+#include "vtkNew.h"       // for vtkNew
+#include "vtkTextActor.h" // for vtkNew<vtkTextActor>
+
+#include <string> // for std::string
+
+class vtkTimeCriticalRenderer;
+
+class TIMECRITICALVIEWS_EXPORT vtkPVTimeCriticalRenderView : public vtkPVRenderView
+{
+public:
+  static vtkPVTimeCriticalRenderView* New();
+  vtkTypeMacro(vtkPVTimeCriticalRenderView, vtkPVRenderView);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /// The renderer that plans every frame (the view's default renderer).
+  vtkTimeCriticalRenderer* GetTimeCriticalRenderer();
+
+  ///@{
+  /// Frame-time budget settings, forwarded to the renderer (which checks them).
+  void SetTargetFrameTimeMilliseconds(double ms);          ///< > 0, default 100
+  double GetTargetFrameTimeMilliseconds();
+  void SetOptimizationTimeLimitMilliseconds(double ms);    ///< >= 0, default 1
+  double GetOptimizationTimeLimitMilliseconds();
+  void SetPolicy(int policy);                              ///< vtkTimeCriticalRenderer::Policies
+  int GetPolicy();
+  void SetDegradationFamily(int family);                   ///< vtkTimeCriticalRenderer::DegradationFamilies
+  int GetDegradationFamily();
+  void SetUseVelocity(bool on);
+  bool GetUseVelocity();
+  void SetUseEccentricity(bool on);
+  bool GetUseEccentricity();
+  ///@}
+
+  ///@{
+  /// View-dependent refinement settings, forwarded to the renderer.
+  void SetViewDependentRefinement(bool on);
+  void SetRefinementMode(int mode); ///< vtkTimeCriticalRenderer::RefinementModes
+  void SetPixelThreshold(double pixels);
+  void SetBackFaceSimplification(bool on);
+  void SetSilhouetteRefinement(bool on);
+  void SetHighlightRefinement(bool on);
+  void SetRefinementTimeLimitMilliseconds(double ms); ///< >= 0 (0: no limit)
+  ///@}
+
+  ///@{
+  /**
+   * Draw every time-critical object in the grey of its resolution (the
+   * papers' resolution maps; lighter is finer). Default off.
+   */
+  vtkSetMacro(ColorByResolution, bool);
+  vtkGetMacro(ColorByResolution, bool);
+  ///@}
+
+  ///@{
+  /// Still renders draw every object at full resolution (default on); off: they are budgeted too.
+  vtkSetMacro(FullResolutionStillRenders, bool);
+  vtkGetMacro(FullResolutionStillRenders, bool);
+  ///@}
+
+  ///@{
+  /// Show the last frame's statistics in the view's upper left corner. Default off.
+  void SetShowStatistics(bool on);
+  vtkGetMacro(ShowStatistics, bool);
+  ///@}
+
+  /// The statistics text ShowStatistics displays, for the last frame.
+  std::string GetStatisticsText();
+
+  /// Has no effect: the frame-time budget replaces ParaView's LOD in this view.
+  void SetLODRenderingThreshold(double threshold);
+
+protected:
+  vtkPVTimeCriticalRenderView();
+  ~vtkPVTimeCriticalRenderView() override;
+
+  void Render(bool interactive, bool skip_rendering) override;
+  void AddRepresentationInternal(vtkDataRepresentation* rep) override;
+  void UpdateStatisticsText();
+
+  bool ColorByResolution = false;
+  bool FullResolutionStillRenders = true;
+  bool ShowStatistics = false;
+  bool WarnedAboutOtherRepresentations = false;
+  vtkNew<vtkTextActor> StatisticsActor;
+
+private:
+  vtkPVTimeCriticalRenderView(const vtkPVTimeCriticalRenderView&) = delete;
+  void operator=(const vtkPVTimeCriticalRenderView&) = delete;
+};
+
+#endif

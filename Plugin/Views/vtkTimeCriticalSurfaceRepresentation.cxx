@@ -1,0 +1,82 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtkTimeCriticalSurfaceRepresentation.h"
+
+#include "vtkCommand.h"
+#include "vtkMultiresolutionHierarchyBuilder.h"
+#include "vtkMultiresolutionPolyDataMapper.h"
+#include "vtkObjectFactory.h"
+#include "vtkPVLODActor.h"
+
+vtkStandardNewMacro(vtkTimeCriticalSurfaceRepresentation);
+
+//------------------------------------------------------------------------------
+vtkTimeCriticalSurfaceRepresentation::vtkTimeCriticalSurfaceRepresentation()
+{
+  // The base class made a vtkCompositePolyDataMapper2 and set it up; the
+  // multiresolution mapper takes its place with the same selection.
+  vtkMultiresolutionPolyDataMapper* mapper = vtkMultiresolutionPolyDataMapper::New();
+  mapper->SetSelection(this->Mapper->GetSelection());
+  this->Mapper->Delete();
+  this->Mapper = mapper;
+  this->Actor->SetMapper(this->Mapper);
+  // No decimated LOD copy: the view's budget replaces it.
+  this->SetSuppressLOD(true);
+
+  // Hierarchies are built on the surface the geometry filter extracts,
+  // before the data is delivered to the rendering processes.
+  this->HierarchyBuilder->SetInputConnection(this->GeometryFilter->GetOutputPort());
+  this->MultiBlockMaker->SetInputConnection(this->HierarchyBuilder->GetOutputPort());
+  this->HierarchyBuilder->AddObserver(vtkCommand::ProgressEvent, this,
+    &vtkTimeCriticalSurfaceRepresentation::ForwardBuildProgress);
+}
+
+vtkTimeCriticalSurfaceRepresentation::~vtkTimeCriticalSurfaceRepresentation() = default;
+
+//------------------------------------------------------------------------------
+void vtkTimeCriticalSurfaceRepresentation::SetHierarchy(int hierarchy)
+{
+  if (hierarchy != this->HierarchyBuilder->GetHierarchy())
+  {
+    this->HierarchyBuilder->SetHierarchy(hierarchy);
+    this->MarkModified();
+  }
+}
+
+int vtkTimeCriticalSurfaceRepresentation::GetHierarchy()
+{
+  return this->HierarchyBuilder->GetHierarchy();
+}
+
+vtkMultiresolutionHierarchyBuilder* vtkTimeCriticalSurfaceRepresentation::GetHierarchyBuilder()
+{
+  return this->HierarchyBuilder;
+}
+
+vtkMultiresolutionPolyDataMapper* vtkTimeCriticalSurfaceRepresentation::GetMultiresolutionMapper()
+{
+  return vtkMultiresolutionPolyDataMapper::SafeDownCast(this->Mapper);
+}
+
+//------------------------------------------------------------------------------
+void vtkTimeCriticalSurfaceRepresentation::ForwardBuildProgress(
+  vtkObject* caller, unsigned long, void*)
+{
+  // The builds dominate the representation's update: their progress is its.
+  auto* builder = static_cast<vtkAlgorithm*>(caller);
+  const double progress = builder->GetProgress();
+  if (progress > 0.0 && progress < 1.0)
+  {
+    this->UpdateProgress(progress);
+  }
+  if (this->AbortExecute)
+  {
+    builder->SetAbortExecute(1);
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkTimeCriticalSurfaceRepresentation::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "HierarchyBuilder: " << this->HierarchyBuilder << "\n";
+}

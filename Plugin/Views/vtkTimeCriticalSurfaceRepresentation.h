@@ -1,0 +1,69 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @class   vtkTimeCriticalSurfaceRepresentation
+ * @brief   ParaView surface representation drawn by the time-critical renderer
+ *
+ * The Surface, Wireframe, Points and Surface With Edges representation of
+ * vtkPVTimeCriticalRenderView (server side of the
+ * "TimeCriticalSurfaceRepresentation" proxy): ParaView's surface
+ * representation (colouring, opacity, lighting, representation types,
+ * visibility all as there) whose mapper is a vtkMultiresolutionPolyDataMapper,
+ * so that every polydata leaf of its data is one object of the renderer's
+ * optimizer.
+ *
+ * The hierarchies the mapper draws are built by a
+ * vtkMultiresolutionHierarchyBuilder between ParaView's geometry filter and
+ * the data delivery: once per leaf (with progress in ParaView's progress
+ * bar), again only when the leaf's content changes, and never for leaves that
+ * already carry one (TOMs or merge trees saved by the TimeCritical filters).
+ * Hierarchy chooses uniform TOMs (default) or merge trees (view-dependent
+ * refinement as well).
+ *
+ * ParaView's interactive LOD is not used (the view's budget replaces it);
+ * block colours, block opacities and block visibilities of composite data
+ * are not supported (vtkMultiresolutionPolyDataMapper draws all leaves with
+ * the representation's colouring).
+ *
+ * @sa vtkPVTimeCriticalRenderView vtkTimeCriticalCompositeRepresentation
+ */
+#ifndef vtkTimeCriticalSurfaceRepresentation_h
+#define vtkTimeCriticalSurfaceRepresentation_h
+
+#include "TimeCriticalViewsModule.h" // for export macro
+#include "vtkGeometryRepresentationWithFaces.h"
+#include "vtkNew.h" // for vtkNew
+
+class vtkMultiresolutionHierarchyBuilder;
+class vtkMultiresolutionPolyDataMapper;
+
+class TIMECRITICALVIEWS_EXPORT vtkTimeCriticalSurfaceRepresentation
+  : public vtkGeometryRepresentationWithFaces
+{
+public:
+  static vtkTimeCriticalSurfaceRepresentation* New();
+  vtkTypeMacro(vtkTimeCriticalSurfaceRepresentation, vtkGeometryRepresentationWithFaces);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /// vtkMultiresolutionHierarchyBuilder::Hierarchies: TOTALLY_ORDERED_MESH (default) or MERGE_TREE.
+  void SetHierarchy(int hierarchy);
+  int GetHierarchy();
+  ///@}
+
+  vtkMultiresolutionHierarchyBuilder* GetHierarchyBuilder();
+  vtkMultiresolutionPolyDataMapper* GetMultiresolutionMapper();
+
+protected:
+  vtkTimeCriticalSurfaceRepresentation();
+  ~vtkTimeCriticalSurfaceRepresentation() override;
+
+  void ForwardBuildProgress(vtkObject* caller, unsigned long, void*);
+
+private:
+  vtkTimeCriticalSurfaceRepresentation(const vtkTimeCriticalSurfaceRepresentation&) = delete;
+  void operator=(const vtkTimeCriticalSurfaceRepresentation&) = delete;
+
+  vtkNew<vtkMultiresolutionHierarchyBuilder> HierarchyBuilder;
+};
+
+#endif
