@@ -15,6 +15,7 @@
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkPolyDataValidator.h"
 #include "vtkSmartPointer.h"
 #include "vtkTOMBuilder.h"
 #include "vtkTOMFieldData.h"
@@ -23,6 +24,7 @@
 #include <cstdint>
 #include <cstring>
 #include <map>
+#include <string>
 #include <vector>
 
 vtkStandardNewMacro(vtkMultiresolutionHierarchyBuilder);
@@ -238,14 +240,17 @@ int vtkMultiresolutionHierarchyBuilder::RequestData(
       }
       else
       {
-        result = this->Build(data, totalCells > 0.0 ? doneCells / totalCells : 0.0,
+        result = this->Build(data, leaf.Index, totalCells > 0.0 ? doneCells / totalCells : 0.0,
           totalCells > 0.0 ? cells / totalCells : 0.0);
       }
-      Internals::Entry& entry = cache[leaf.Index];
-      entry.InputHash = hash;
-      entry.InputCells = data->GetNumberOfCells();
-      entry.Output = result;
-      entry.Hierarchy = this->Hierarchy;
+      if (result != data) // builds only: a leaf passed as it came costs nothing again
+      {
+        Internals::Entry& entry = cache[leaf.Index];
+        entry.InputHash = hash;
+        entry.InputCells = data->GetNumberOfCells();
+        entry.Output = result;
+        entry.Hierarchy = this->Hierarchy;
+      }
     }
 
     if (compositeOutput)
@@ -269,8 +274,29 @@ int vtkMultiresolutionHierarchyBuilder::RequestData(
 
 //------------------------------------------------------------------------------
 vtkSmartPointer<vtkPolyData> vtkMultiresolutionHierarchyBuilder::Build(
-  vtkPolyData* leaf, double progressBase, double progressSpan)
+  vtkPolyData* leaf, unsigned int leafIndex, double progressBase, double progressSpan)
 {
+  // Checked here rather than by the builder, whose failure would also bring
+  // an error of its executive; and vertices or lines, which a TOM cannot
+  // hold, would be lost: such leaves pass as they are.
+  const std::string problem = vtkPolyDataValidator::CheckBuildInput(leaf);
+  if (!problem.empty())
+  {
+    vtkErrorMacro("Leaf " << leafIndex << " (composite flat index) passes without a hierarchy: "
+                          << problem << ".");
+    ++this->NumberOfPassedLeaves;
+    return leaf;
+  }
+  if (leaf->GetNumberOfVerts() > 0 || leaf->GetNumberOfLines() > 0)
+  {
+    vtkWarningMacro("Leaf " << leafIndex << " (composite flat index) has "
+                            << leaf->GetNumberOfVerts() + leaf->GetNumberOfLines()
+                            << " vertex and line cells besides its surface: drawn in full "
+                               "(a hierarchy holds triangles only; extract the surface to make "
+                               "it multiresolution).");
+    ++this->NumberOfPassedLeaves;
+    return leaf;
+  }
   vtkSmartPointer<vtkPolyDataAlgorithm> builder;
   if (this->Hierarchy == MERGE_TREE)
   {
@@ -282,8 +308,13 @@ vtkSmartPointer<vtkPolyData> vtkMultiresolutionHierarchyBuilder::Build(
   }
   this->ProgressBase = progressBase;
   this->ProgressSpan = progressSpan;
+  this->CurrentLeaf = leafIndex;
   builder->AddObserver(
     vtkCommand::ProgressEvent, this, &vtkMultiresolutionHierarchyBuilder::ForwardProgress);
+  builder->AddObserver(
+    vtkCommand::ErrorEvent, this, &vtkMultiresolutionHierarchyBuilder::ForwardMessage);
+  builder->AddObserver(
+    vtkCommand::WarningEvent, this, &vtkMultiresolutionHierarchyBuilder::ForwardMessage);
   builder->SetInputData(leaf);
   builder->Update();
   vtkPolyData* built = builder->GetOutput();
@@ -307,6 +338,23 @@ void vtkMultiresolutionHierarchyBuilder::ForwardProgress(vtkObject* caller, unsi
   if (this->AbortExecute)
   {
     algorithm->SetAbortExecute(1);
+  }
+}
+
+void vtkMultiresolutionHierarchyBuilder::ForwardMessage(
+  vtkObject*, unsigned long event, void* callData)
+{
+  // The builder's messages become this filter's, with the leaf they concern
+  // (an observer keeps the builder from printing them itself).
+  const char* text = callData ? static_cast<const char*>(callData) : "";
+  if (event == vtkCommand::ErrorEvent)
+  {
+    vtkErrorMacro("Leaf " << this->CurrentLeaf << " (composite flat index) passes without a "
+                          << "hierarchy: " << text);
+  }
+  else
+  {
+    vtkWarningMacro("Leaf " << this->CurrentLeaf << " (composite flat index): " << text);
   }
 }
 

@@ -24,9 +24,12 @@
  * block) costs no build. The cache holds the last execution's leaves only.
  *
  * Leaves that are not polydata, are empty, or have no polygons or strips
- * pass unchanged (the mapper draws them in full). A leaf the builder rejects
- * (non-finite coordinates, ...) passes unchanged too, after the builder's
- * error message. Progress follows the triangles built.
+ * pass unchanged (the mapper draws them in full). So do leaves that also
+ * hold vertices or lines (a hierarchy holds triangles only: nothing is
+ * dropped), with a warning, and bad leaves (out-of-range point ids,
+ * non-finite coordinates, see vtkPolyDataValidator), with an error naming
+ * the leaf; the other leaves are built. The builders' own messages become
+ * this filter's. Progress follows the triangles built.
  *
  * @sa vtkTOMBuilder vtkMergeTreeBuilder vtkMultiresolutionPolyDataMapper
  */
@@ -87,9 +90,12 @@ private:
   void operator=(const vtkMultiresolutionHierarchyBuilder&) = delete;
 
   /// Build the hierarchy of one leaf (the leaf itself when the builder rejects it).
-  vtkSmartPointer<vtkPolyData> Build(vtkPolyData* leaf, double progressBase, double progressSpan);
+  vtkSmartPointer<vtkPolyData> Build(
+    vtkPolyData* leaf, unsigned int leafIndex, double progressBase, double progressSpan);
 
   void ForwardProgress(vtkObject* caller, unsigned long, void*);
+  void ForwardMessage(vtkObject* caller, unsigned long event, void* callData);
+  unsigned int CurrentLeaf = 0;
   double ProgressBase = 0.0;
   double ProgressSpan = 0.0;
 
