@@ -100,8 +100,9 @@ def find_plugin(args):
 
 
 def import_timecritical(plugin):
-    """Imports the timecritical package, from PYTHONPATH or from the build (or
-    install) tree the plugin belongs to: <tree>/lib/python3/dist-packages."""
+    """Imports the timecritical package (it wraps the renderer whose statistics
+    the script reads), from PYTHONPATH or from the build (or install) tree the
+    plugin belongs to: <tree>/lib/python3/dist-packages."""
     try:
         import timecritical  # noqa: F401
     except ImportError:
@@ -112,9 +113,7 @@ def import_timecritical(plugin):
         except ImportError:
             sys.exit("w1_walkthrough: cannot import the timecritical Python package: set "
                      "PYTHONPATH to <build>/lib/python3/dist-packages")
-    import timecritical  # noqa: F811
     from timecritical import TimeCriticalViews  # noqa: F401  (wraps the view's classes)
-    return timecritical
 
 
 def import_scene_generator():
@@ -240,7 +239,7 @@ def main():
     scene_folder = args.scene or os.path.join(args.output, "scene")
     load_start = load_average()
 
-    timecritical = import_timecritical(plugin)
+    import_timecritical(plugin)
     generator = import_scene_generator()
     scene, path = generator.ensure_scene(scene_folder, args.objects, args.seed, args.frames,
                                          args.mesh)
