@@ -20,6 +20,7 @@
 #include "vtkTimeCriticalRenderer.h"
 #include "vtkVersion.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <iomanip>
@@ -340,6 +341,77 @@ void vtkPVTimeCriticalRenderView::Render(bool interactive, bool skip_rendering)
     }
   }
   this->Superclass::Render(interactive, skip_rendering);
+  this->GatherRankStatistics();
+}
+
+//------------------------------------------------------------------------------
+namespace
+{
+constexpr int RankStatisticsFields = 4;
+}
+
+void vtkPVTimeCriticalRenderView::GatherRankStatistics()
+{
+  vtkTimeCriticalRenderer* renderer = this->GetTimeCriticalRenderer();
+  if (!renderer)
+  {
+    return;
+  }
+  const double mine[RankStatisticsFields] = { renderer->GetMeasuredFrameTime(),
+    renderer->GetPredictedFrameTime(), renderer->GetLastTargetFrameTime(),
+    static_cast<double>(renderer->GetObjectTrianglesDrawn()) };
+  vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
+  const int ranks = controller ? controller->GetNumberOfProcesses() : 1;
+  if (ranks > 1 && !this->GetUseDistributedRenderingForRender())
+  {
+    return; // not every rank rendered: no collective
+  }
+  this->RankStatistics.resize(static_cast<size_t>(RankStatisticsFields * ranks));
+  if (ranks > 1)
+  {
+    controller->AllGather(mine, this->RankStatistics.data(), RankStatisticsFields);
+  }
+  else
+  {
+    std::copy(mine, mine + RankStatisticsFields, this->RankStatistics.begin());
+  }
+}
+
+int vtkPVTimeCriticalRenderView::GetNumberOfRanks()
+{
+  return static_cast<int>(this->RankStatistics.size() / RankStatisticsFields);
+}
+
+double vtkPVTimeCriticalRenderView::GetRankStatistic(int rank, int field)
+{
+  if (rank < 0 || rank >= this->GetNumberOfRanks())
+  {
+    vtkErrorMacro("No statistics for rank " << rank << " (" << this->GetNumberOfRanks()
+                                            << " ranks gathered)");
+    return std::numeric_limits<double>::quiet_NaN();
+  }
+  return this->RankStatistics[static_cast<size_t>(rank * RankStatisticsFields + field)];
+}
+
+double vtkPVTimeCriticalRenderView::GetRankMeasuredFrameTime(int rank)
+{
+  return this->GetRankStatistic(rank, 0);
+}
+
+double vtkPVTimeCriticalRenderView::GetRankPredictedFrameTime(int rank)
+{
+  return this->GetRankStatistic(rank, 1);
+}
+
+double vtkPVTimeCriticalRenderView::GetRankTargetFrameTime(int rank)
+{
+  return this->GetRankStatistic(rank, 2);
+}
+
+vtkIdType vtkPVTimeCriticalRenderView::GetRankTrianglesDrawn(int rank)
+{
+  const double triangles = this->GetRankStatistic(rank, 3);
+  return std::isfinite(triangles) ? static_cast<vtkIdType>(triangles) : -1;
 }
 
 //------------------------------------------------------------------------------
@@ -407,6 +479,18 @@ std::string vtkPVTimeCriticalRenderView::GetStatisticsText()
        << " drawn, " << WithThousands(renderer->GetNumberOfCulledObjects()) << " culled\n";
   text << std::setprecision(2) << "Optimizer: " << renderer->GetOptimizationTime() * 1000.0
        << " ms, " << renderer->GetOptimizationIterations() << " iterations";
+  const int ranks = this->GetNumberOfRanks();
+  if (ranks > 1)
+  {
+    double slowest = 0.0;
+    for (int rank = 0; rank < ranks; ++rank)
+    {
+      const double rankTime = this->GetRankMeasuredFrameTime(rank);
+      slowest = std::isfinite(rankTime) ? std::max(slowest, rankTime) : slowest;
+    }
+    text << std::setprecision(1) << "\nRanks: " << ranks << ", slowest measured "
+         << slowest * 1000.0 << " ms";
+  }
   return text.str();
 }
 

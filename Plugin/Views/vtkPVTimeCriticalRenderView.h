@@ -40,6 +40,7 @@
 #include "vtkTextActor.h" // for vtkNew<vtkTextActor>
 
 #include <string> // for std::string
+#include <vector> // for std::vector
 
 class vtkTimeCriticalRenderer;
 
@@ -104,6 +105,21 @@ public:
   /// The statistics text ShowStatistics displays, for the last frame.
   std::string GetStatisticsText();
 
+  ///@{
+  /**
+   * Per-rank statistics of the last distributed render (every rank's
+   * renderer plans its own objects): its measured time (of the frame before,
+   * as GetMeasuredFrameTime()), predicted time, target and triangles drawn.
+   * Gathered on every rank after each render that all ranks take part in;
+   * with one process, rank 0 is this one. NaN or -1 for a bad rank.
+   */
+  int GetNumberOfRanks();
+  double GetRankMeasuredFrameTime(int rank);
+  double GetRankPredictedFrameTime(int rank);
+  double GetRankTargetFrameTime(int rank);
+  vtkIdType GetRankTrianglesDrawn(int rank);
+  ///@}
+
   /// Has no effect: the frame-time budget replaces ParaView's LOD in this view.
   void SetLODRenderingThreshold(double threshold);
 
@@ -114,11 +130,14 @@ protected:
   void Render(bool interactive, bool skip_rendering) override;
   void AddRepresentationInternal(vtkDataRepresentation* rep) override;
   void UpdateStatisticsText();
+  void GatherRankStatistics();
+  double GetRankStatistic(int rank, int field);
 
   bool ColorByResolution = false;
   bool FullResolutionStillRenders = true;
   bool ShowStatistics = false;
   bool WarnedAboutOtherRepresentations = false;
+  std::vector<double> RankStatistics; // per rank: measured, predicted, target, triangles
   vtkNew<vtkTextActor> StatisticsActor;
 
 private:

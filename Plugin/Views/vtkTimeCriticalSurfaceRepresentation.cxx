@@ -6,6 +6,7 @@
 #include "vtkMultiresolutionPolyDataMapper.h"
 #include "vtkObjectFactory.h"
 #include "vtkPVLODActor.h"
+#include "vtkPVRenderView.h"
 
 vtkStandardNewMacro(vtkTimeCriticalSurfaceRepresentation);
 
@@ -55,6 +56,22 @@ vtkMultiresolutionHierarchyBuilder* vtkTimeCriticalSurfaceRepresentation::GetHie
 vtkMultiresolutionPolyDataMapper* vtkTimeCriticalSurfaceRepresentation::GetMultiresolutionMapper()
 {
   return vtkMultiresolutionPolyDataMapper::SafeDownCast(this->Mapper);
+}
+
+//------------------------------------------------------------------------------
+int vtkTimeCriticalSurfaceRepresentation::ProcessViewRequest(
+  vtkInformationRequestKey* request_type, vtkInformation* inInfo, vtkInformation* outInfo)
+{
+  if (!this->Superclass::ProcessViewRequest(request_type, inInfo, outInfo))
+  {
+    return 0;
+  }
+  if (request_type == vtkPVView::REQUEST_UPDATE())
+  {
+    vtkPVRenderView::SetRequiresDistributedRendering(inInfo, this, true);
+    vtkPVRenderView::SetOrderedCompositingConfiguration(inInfo, this, 0);
+  }
+  return 1;
 }
 
 //------------------------------------------------------------------------------

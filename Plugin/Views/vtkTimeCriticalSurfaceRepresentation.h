@@ -19,6 +19,10 @@
  * Hierarchy chooses uniform TOMs (default) or merge trees (view-dependent
  * refinement as well).
  *
+ * In parallel every rank builds and draws its own pieces (the data is never
+ * gathered onto one rank nor redistributed): translucent surfaces whose
+ * pieces interleave in depth are composited in rank order.
+ *
  * ParaView's interactive LOD is not used (the view's budget replaces it);
  * block colours, block opacities and block visibilities of composite data
  * are not supported (vtkMultiresolutionPolyDataMapper draws all leaves with
@@ -52,6 +56,16 @@ public:
 
   vtkMultiresolutionHierarchyBuilder* GetHierarchyBuilder();
   vtkMultiresolutionPolyDataMapper* GetMultiresolutionMapper();
+
+  /**
+   * As ParaView's surface representation, except that the data stays on the
+   * rank that built it: the view renders it where it is (distributed
+   * rendering, never gathered onto one rank, which would append the pieces'
+   * hierarchies into an invalid one) and does not redistribute it for
+   * ordered compositing.
+   */
+  int ProcessViewRequest(vtkInformationRequestKey* request_type, vtkInformation* inInfo,
+    vtkInformation* outInfo) override;
 
 protected:
   vtkTimeCriticalSurfaceRepresentation();
