@@ -54,6 +54,13 @@ def run():
     rep.DiffuseColor = [0.9, 0.75, 0.5]
     Render(view)
 
+    # The GUI gave the view a widget of its own: its size is the widget's,
+    # beside the Render View the GUI opened at start-up.
+    others = [v for v in GetViews() if v.GetXMLName() == "RenderView"]
+    if not others or list(view.ViewSize) != list(others[0].ViewSize) or view.ViewSize[0] < 200:
+        raise AssertionError("no GUI widget for the view: size %s, other views %s"
+                             % (list(view.ViewSize), [list(v.ViewSize) for v in others]))
+
     renderer = view.GetClientSideObject().GetRenderer()
     if not renderer.IsA("vtkTimeCriticalRenderer") or renderer.GetNumberOfObjects() != 1:
         raise AssertionError("the GUI's view does not render time-critically")

@@ -265,9 +265,8 @@ class TimeCriticalViewTests(ProxyTests, unittest.TestCase):
         Render(view)
         state = os.path.join(OUT, "view.pvsm")
         SaveState(state)
-        ResetSession()
+        ResetSession()  # the plugin stays loaded: the new session knows its proxies
         self.created = []
-        load_plugin(globals(), ["BuildTotallyOrderedMesh"])
         LoadState(state)
         views = [v for v in GetViews() if v.GetXMLName() == "TimeCriticalRenderView"]
         self.assertEqual(len(views), 1)
