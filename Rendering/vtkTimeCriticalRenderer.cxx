@@ -778,6 +778,13 @@ bool vtkTimeCriticalRenderer::Calibrate()
 void vtkTimeCriticalRenderer::DeviceRender()
 {
   Internals& in = *this->Internal;
+  if (this->HoldResolutions)
+  {
+    // The mappers keep the resolutions of the last plan (render state).
+    in.FramePending = false;
+    this->Superclass::DeviceRender();
+    return;
+  }
   this->WatchWindow();
   if (!in.FrameStartValid)
   {
@@ -1370,6 +1377,7 @@ void vtkTimeCriticalRenderer::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "StaticPixelsPerTriangle: " << this->StaticPixelsPerTriangle << "\n";
   os << indent << "UseDesiredUpdateRate: " << this->UseDesiredUpdateRate << "\n";
   os << indent << "StillRendering: " << this->StillRendering << "\n";
+  os << indent << "HoldResolutions: " << this->HoldResolutions << "\n";
   os << indent << "StillUpdateRateThreshold: " << this->StillUpdateRateThreshold << "\n";
   os << indent << "AutomaticCalibration: " << this->AutomaticCalibration << "\n";
   os << indent << "OnlineCalibration: " << this->OnlineCalibration << "\n";

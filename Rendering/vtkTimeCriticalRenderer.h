@@ -209,6 +209,19 @@ public:
 
   ///@{
   /**
+   * While on, renders draw every object as the last planned frame left it:
+   * no culling, no optimization, no measurement (the statistics stay those
+   * of that frame). For captures that draw one frame in several passes,
+   * such as tiled screenshots, whose tiles would otherwise each get a plan
+   * of their own. Default off.
+   */
+  vtkSetMacro(HoldResolutions, bool);
+  vtkGetMacro(HoldResolutions, bool);
+  vtkBooleanMacro(HoldResolutions, bool);
+  ///@}
+
+  ///@{
+  /**
    * Cost model calibration. AutomaticCalibration (default on) runs
    * Calibrate()'s renders in the first render with objects, still or not
    * (unless the policy is FULL_RESOLUTION), so that no interactive frame
@@ -385,6 +398,7 @@ protected:
   double StaticPixelsPerTriangle = 8.0;
   bool UseDesiredUpdateRate = false;
   bool StillRendering = false;
+  bool HoldResolutions = false;
   double StillUpdateRateThreshold = 0.001;
   bool AutomaticCalibration = true;
   bool OnlineCalibration = true;

@@ -225,10 +225,6 @@ vtkPVTimeCriticalRenderView::vtkPVTimeCriticalRenderView()
   this->StatisticsActor->SetVisibility(0);
   this->StatisticsActor->SetPickable(0);
   this->GetNonCompositedRenderer()->AddActor(this->StatisticsActor);
-  // The 2D renderer draws after the time-critical one in the same window
-  // render, so its start is when the frame's plan is known.
-  this->GetNonCompositedRenderer()->AddObserver(
-    vtkCommand::StartEvent, this, &vtkPVTimeCriticalRenderView::UpdateStatisticsText);
 }
 
 //------------------------------------------------------------------------------
@@ -340,6 +336,12 @@ void vtkPVTimeCriticalRenderView::Render(bool interactive, bool skip_rendering)
       }
     }
   }
+  // The overlay shows the figures of the frame before: one text for every
+  // pass of this render (screenshots may draw a frame several times).
+  if (this->ShowStatistics)
+  {
+    this->StatisticsActor->SetInput(this->GetStatisticsText().c_str());
+  }
   this->Superclass::Render(interactive, skip_rendering);
   this->GatherRankStatistics();
 }
@@ -415,6 +417,29 @@ vtkIdType vtkPVTimeCriticalRenderView::GetRankTrianglesDrawn(int rank)
 }
 
 //------------------------------------------------------------------------------
+void vtkPVTimeCriticalRenderView::PrepareForScreenshot()
+{
+  this->Superclass::PrepareForScreenshot();
+  vtkTimeCriticalRenderer* renderer = this->GetTimeCriticalRenderer();
+  const bool budgetedCapture =
+    !this->FullResolutionStillRenders || this->GetUseInteractiveRenderingForScreenshots();
+  if (renderer && budgetedCapture && !renderer->GetLastRenderWasStill() &&
+    renderer->GetNumberOfObjects() > 0)
+  {
+    renderer->HoldResolutionsOn();
+  }
+}
+
+void vtkPVTimeCriticalRenderView::CleanupAfterScreenshot()
+{
+  if (vtkTimeCriticalRenderer* renderer = this->GetTimeCriticalRenderer())
+  {
+    renderer->HoldResolutionsOff();
+  }
+  this->Superclass::CleanupAfterScreenshot();
+}
+
+//------------------------------------------------------------------------------
 void vtkPVTimeCriticalRenderView::AddRepresentationInternal(vtkDataRepresentation* rep)
 {
   if (!this->WarnedAboutOtherRepresentations && rep->IsA("vtkPVCompositeRepresentation") &&
@@ -451,17 +476,18 @@ std::string vtkPVTimeCriticalRenderView::GetStatisticsText()
   const vtkIdType drawn = renderer->GetObjectTrianglesDrawn();
   std::ostringstream text;
   text << std::fixed << std::setprecision(1);
+  text << "Last frame: ";
   if (renderer->GetLastRenderWasStill())
   {
-    text << "Still frame: full resolution\n";
+    text << "still, full resolution\n";
   }
   else
   {
-    text << "Target " << renderer->GetLastTargetFrameTime() * 1000.0 << " ms, predicted "
+    text << "target " << renderer->GetLastTargetFrameTime() * 1000.0 << " ms, predicted "
          << renderer->GetPredictedFrameTime() * 1000.0 << " ms\n";
   }
   const double measured = renderer->GetMeasuredFrameTime();
-  text << "Last frame measured: ";
+  text << "Measured: ";
   if (std::isfinite(measured))
   {
     text << measured * 1000.0 << " ms\n";
@@ -492,14 +518,6 @@ std::string vtkPVTimeCriticalRenderView::GetStatisticsText()
          << slowest * 1000.0 << " ms";
   }
   return text.str();
-}
-
-void vtkPVTimeCriticalRenderView::UpdateStatisticsText()
-{
-  if (this->ShowStatistics)
-  {
-    this->StatisticsActor->SetInput(this->GetStatisticsText().c_str());
-  }
 }
 
 //------------------------------------------------------------------------------

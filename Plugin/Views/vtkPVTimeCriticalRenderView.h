@@ -102,7 +102,7 @@ public:
   vtkGetMacro(ShowStatistics, bool);
   ///@}
 
-  /// The statistics text ShowStatistics displays, for the last frame.
+  /// The statistics text ShowStatistics displays: the last frame's figures.
   std::string GetStatisticsText();
 
   ///@{
@@ -120,6 +120,16 @@ public:
   vtkIdType GetRankTrianglesDrawn(int rank);
   ///@}
 
+  ///@{
+  /**
+   * Screenshots: when their renders are budgeted (FullResolutionAtRest off)
+   * they hold the resolutions of the last planned frame, so that the tiles
+   * of a screenshot larger than the view show one frame, not a plan each.
+   */
+  void PrepareForScreenshot() override;
+  void CleanupAfterScreenshot() override;
+  ///@}
+
   /// Has no effect: the frame-time budget replaces ParaView's LOD in this view.
   void SetLODRenderingThreshold(double threshold);
 
@@ -129,7 +139,6 @@ protected:
 
   void Render(bool interactive, bool skip_rendering) override;
   void AddRepresentationInternal(vtkDataRepresentation* rep) override;
-  void UpdateStatisticsText();
   void GatherRankStatistics();
   double GetRankStatistic(int rank, int field);
 

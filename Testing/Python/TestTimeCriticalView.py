@@ -183,6 +183,26 @@ class TimeCriticalViewTests(ProxyTests, unittest.TestCase):
         self.assertFalse(renderer.GetLastRenderWasStill())
         self.assertLess(renderer.GetObjectTrianglesDrawn(), full)
 
+    def test_budgeted_screenshot_tiles_show_one_frame(self):
+        view = self.view(TargetFrameTime=30, FullResolutionAtRest=0)
+        spheres = [self.new(sphere(200, (2.5 * i, 0, 0))) for i in range(3)]
+        group = self.new(GroupDatasets(Input=spheres))
+        self.new(Show(group, view))
+        view.ResetCamera()
+        for _ in range(3):
+            Render(view)
+        renderer = view.GetClientSideObject().GetRenderer()
+        mapper = leaf_mapper(view)
+        planned = [mapper.GetObjectRenderedTriangles(i) for i in range(3)]
+        self.assertLess(sum(planned), 3 * mapper.GetObjectNumberOfTriangles(0))
+        # Twice the view's size: ParaView draws 2 x 2 tiles.
+        SaveScreenshot(os.path.join(OUT, "tiles.png"), view,
+                       ImageResolution=[2 * SIZE[0], 2 * SIZE[1]])
+        self.assertEqual([mapper.GetObjectRenderedTriangles(i) for i in range(3)], planned)
+        self.assertFalse(renderer.GetHoldResolutions())  # released after the capture
+        Render(view)  # and planned again
+        self.assertFalse(renderer.GetLastRenderWasStill())
+
     def test_statistics_text(self):
         view = self.view(ShowStatistics=1, TargetFrameTime=50)
         source = self.new(sphere(100))
@@ -190,7 +210,7 @@ class TimeCriticalViewTests(ProxyTests, unittest.TestCase):
         view.InteractiveRender()
         view.InteractiveRender()
         text = view.GetClientSideObject().GetStatisticsText()
-        self.assertIn("Target 50.0 ms", text)
+        self.assertIn("Last frame: target 50.0 ms", text)
         self.assertIn("Triangles:", text)
         self.assertIn("of 19,600", text)  # the sphere's triangles
         self.assertIn("Objects: 1 drawn, 0 culled", text)
