@@ -17,8 +17,11 @@ vtkTimeCriticalSurfaceRepresentation::vtkTimeCriticalSurfaceRepresentation()
   // multiresolution mapper takes its place with the same selection.
   vtkMultiresolutionPolyDataMapper* mapper = vtkMultiresolutionPolyDataMapper::New();
   mapper->SetSelection(this->Mapper->GetSelection());
+  mapper->SetProcessIdArrayName("vtkProcessId");
+  mapper->SetCompositeIdArrayName("vtkCompositeIndex");
   this->Mapper->Delete();
   this->Mapper = mapper;
+  this->SetArrayIdNames(nullptr, nullptr);
   this->Actor->SetMapper(this->Mapper);
   // No decimated LOD copy: the view's budget replaces it.
   this->SetSuppressLOD(true);
@@ -72,6 +75,16 @@ int vtkTimeCriticalSurfaceRepresentation::ProcessViewRequest(
     vtkPVRenderView::SetOrderedCompositingConfiguration(inInfo, this, 0);
   }
   return 1;
+}
+
+//------------------------------------------------------------------------------
+void vtkTimeCriticalSurfaceRepresentation::SetArrayIdNames(
+  const char* pointArray, const char* cellArray)
+{
+  // Not the superclass's: it sets them on a vtkCompositePolyDataMapper2.
+  auto* mapper = vtkMultiresolutionPolyDataMapper::SafeDownCast(this->Mapper);
+  mapper->SetPointIdArrayName(pointArray ? pointArray : "vtkOriginalPointIds");
+  mapper->SetCellIdArrayName(cellArray ? cellArray : "vtkOriginalCellIds");
 }
 
 //------------------------------------------------------------------------------

@@ -67,6 +67,15 @@ public:
   int ProcessViewRequest(vtkInformationRequestKey* request_type, vtkInformation* inInfo,
     vtkInformation* outInfo) override;
 
+  /**
+   * Hardware selection's id arrays, on the multiresolution mapper (which
+   * reports each leaf's own cell and point ids at any resolution): default
+   * vtkOriginalPointIds and vtkOriginalCellIds, which ParaView's geometry
+   * filter adds and the hierarchy builders carry through their reordering,
+   * so selections name the cells of the data as it was loaded.
+   */
+  void SetArrayIdNames(const char* pointArray, const char* cellArray) override;
+
 protected:
   vtkTimeCriticalSurfaceRepresentation();
   ~vtkTimeCriticalSurfaceRepresentation() override;

@@ -203,6 +203,32 @@ class TimeCriticalViewTests(ProxyTests, unittest.TestCase):
         Render(view)  # and planned again
         self.assertFalse(renderer.GetLastRenderWasStill())
 
+    def test_cell_selection_matches_a_render_view(self):
+        """Area selection picks the same input cells as in a Render View."""
+        source = self.new(sphere(60))
+
+        def selected(view):
+            self.new(Show(source, view))
+            view.CameraPosition = [0.0, 0.0, 3.0]
+            view.CameraFocalPoint = [0.0, 0.0, 0.0]
+            view.CameraViewUp = [0.0, 1.0, 0.0]
+            Render(view)
+            SelectSurfaceCells(Rectangle=[200, 140, 280, 220], View=view, Modifier=None)
+            extract = self.new(ExtractSelection(Input=source))
+            cells = self.fetch(extract)
+            ClearSelection(source)
+            ids = cells.GetCellData().GetArray("vtkOriginalCellIds")
+            self.assertIsNotNone(ids)
+            return sorted(int(ids.GetValue(i)) for i in range(ids.GetNumberOfTuples()))
+
+        reference = self.new(CreateView("RenderView"))
+        reference.ViewSize = SIZE
+        reference.OrientationAxesVisibility = 0
+        expected = selected(reference)
+        got = selected(self.view())
+        self.assertGreater(len(expected), 20)
+        self.assertEqual(got, expected)
+
     def test_statistics_text(self):
         view = self.view(ShowStatistics=1, TargetFrameTime=50)
         source = self.new(sphere(100))
