@@ -19,7 +19,8 @@ budgeted frame against it (as the C++ WalkthroughBenchmark does); --check
 makes the exit status fail when a frame breaks the view's contract (used as
 a smoke test).
 
-The plugin is found from --plugin, TIMECRITICAL_PLUGIN or ./build; the
+The plugin is found from --plugin, TIMECRITICAL_PLUGIN or the build folder
+($TIMECRITICAL_BUILD_DIR, default <repository>/build); the
 `timecritical` Python package (for the renderer's statistics) from PYTHONPATH
 or next to the plugin in the same build or install tree. Frame times are
 wall-clock around the view's render (glFinish included, image capture
