@@ -106,6 +106,9 @@ struct vtkTimeCriticalRenderer::Internals
   // jolt the next interactive frame's prediction.
   timecritical::FrameTimeCorrector StillCorrector;
   double RawPrediction = NaN; // the model's prediction of the pending frame, uncorrected
+  // The coefficients are the defaults, never measured here (no calibration,
+  // none given): the first still frame scales them to this machine.
+  bool UsingDefaults = true;
   bool PendingStill = false;  // the pending frame is a still frame
   bool PendingCalibrated = false; // the pending frame ran the calibration's hidden renders
   timecritical::DegradationModel Degradation;
@@ -418,6 +421,7 @@ void vtkTimeCriticalRenderer::SetCostCoefficients(
   in.Model.SetMinimumCoefficients(timecritical::FrameCostModel::Coefficients());
   in.Model.SetCoefficients(c);
   in.SetCoefficientFloors(true);
+  in.UsingDefaults = false;
   // As much as a calibration's samples: the first frames refine them rather
   // than replace them.
   in.ResetCalibrator(GivenCoefficientFrames);
@@ -722,14 +726,53 @@ void vtkTimeCriticalRenderer::OnWindowEnd()
   {
     (in.PendingStill ? in.StillCorrector : in.Corrector)
       .Update(in.RawPrediction, this->MeasuredFrameTime);
+    // The coefficients learn from the frames they plan. Still frames all
+    // have the same features (everything in full): a run of them (ParaView
+    // draws one after every interaction, a scripted path may draw hundreds)
+    // would fade every other direction out of the fit and leave the split
+    // between fixed and per-triangle cost to chance; the first budgeted
+    // frame after them was then planned with a fixed part many times the
+    // real one. Their own correction above still follows them.
     // The fronts' refinement time is measured, not modelled by the
     // features: the model learns the drawing alone.
     const double drawing = this->MeasuredFrameTime - this->RefinementTime;
-    if (in.Calibrator.Update(in.Features.data(), drawing))
+    if (in.PendingStill && in.UsingDefaults)
+    {
+      this->ScaleDefaultCoefficients(drawing);
+    }
+    else if (!in.PendingStill && in.Calibrator.Update(in.Features.data(), drawing))
     {
       in.StoreCoefficients();
     }
   }
+}
+
+void vtkTimeCriticalRenderer::ScaleDefaultCoefficients(double measured)
+{
+  // Without a calibration (it cannot run on one rank of a parallel render
+  // alone, or was turned off) the model starts from defaults whose ratios
+  // are plausible but whose scale may be off by an order of magnitude. A
+  // still frame measures the scale: every coefficient times measured /
+  // predicted, once; the budgeted frames then refine the split.
+  Internals& in = *this->Internal;
+  in.UsingDefaults = false;
+  const double predicted = in.RawPrediction - in.RefinementEstimate;
+  if (!(predicted > 0.0) || !(measured > 0.0) || !std::isfinite(measured))
+  {
+    return;
+  }
+  const double factor = std::min(100.0, std::max(0.01, measured / predicted));
+  auto c = in.Model.GetCoefficients();
+  c.Frame *= factor;
+  c.DrawCall *= factor;
+  c.Object *= factor;
+  c.Triangle *= factor;
+  c.Pixel *= factor;
+  in.Model.SetCoefficients(c);
+  in.SetCoefficientFloors(false);
+  in.ResetCalibrator(1.0); // one frame's worth: the next frames refine it
+  in.Corrector.Reset();
+  in.StillCorrector.Reset();
 }
 
 //------------------------------------------------------------------------------
@@ -1347,6 +1390,7 @@ void vtkTimeCriticalRenderer::RunCalibration()
     in.Corrector.Reset();
     in.StillCorrector.Reset();
     this->Calibrated = true;
+    in.UsingDefaults = false;
   }
   else
   {

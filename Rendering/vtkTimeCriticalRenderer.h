@@ -34,7 +34,11 @@
  * Cost model: calibrated in the first render that has objects (still or
  * not: the start-up frame the user waits for anyway; about a dozen frames'
  * worth of the target, see Calibrate()), then refined from every measured
- * frame. Online refinement cannot lower the triangle cost below half of
+ * frame it planned (not from still frames, whose features never vary:
+ * they have a correction of their own). Without a calibration (turned off,
+ * or a parallel render, where one process cannot render alone) the model
+ * starts from defaults, scaled once to this machine by the first measured
+ * still frame. Online refinement cannot lower the triangle cost below half of
  * what the calibration measured (or SetCostCoefficients() gave), nor any
  * coefficient below what no hardware beats, so a triangle never becomes
  * free. The safety margin
@@ -442,6 +446,7 @@ private:
   void WatchWindow();
   void OnWindowStart();
   void OnWindowEnd();
+  void ScaleDefaultCoefficients(double measured);
   void GatherObjects();
   void MeasureObjects();
   void ChooseResolutions(bool still);

@@ -607,6 +607,34 @@ TEST(TimeCriticalRenderer, EffectiveTargetFollowsTheDesiredUpdateRate)
   EXPECT_NEAR(scene.Renderer->GetPredictedFrameTime(), 0.002 + 1e-6 * total, 1e-9);
 }
 
+TEST(TimeCriticalRenderer, StillFramesLeaveTheCoefficientsAlone)
+{
+  // A run of still frames (ParaView draws one after every interaction; the
+  // W1 example's full-resolution pass drew 240) used to fade everything but
+  // the full-resolution direction out of the online fit: the next budgeted
+  // frame was planned with a fixed part of 0.1-0.4 s where 0.03 s was real.
+  Scene scene(SphereGrid(4));
+  scene.Renderer->AutomaticCalibrationOff();
+  scene.Renderer->OnlineCalibrationOn();
+  // Far from this machine's real costs, so that any learning moves them.
+  scene.Renderer->SetCostCoefficients(0.05, 0.0, 1e-9, 0.0);
+  scene.Renderer->StillRenderingOn();
+  for (int frame = 0; frame < 40; ++frame)
+  {
+    scene.Window->Render();
+    EXPECT_TRUE(scene.Renderer->GetLastRenderWasStill());
+  }
+  EXPECT_EQ(scene.Renderer->GetFrameCost(), 0.05);
+  EXPECT_EQ(scene.Renderer->GetTriangleCost(), 1e-9);
+  // Budgeted frames do teach it.
+  scene.Renderer->StillRenderingOff();
+  for (int frame = 0; frame < 40; ++frame)
+  {
+    scene.Window->Render();
+  }
+  EXPECT_NE(scene.Renderer->GetFrameCost(), 0.05);
+}
+
 TEST(TimeCriticalRenderer, LargeMarginCoarsensInsteadOfEmptyingTheFrame)
 {
   // The soak's flicker: a large fixed part and a margin of half the 100 ms
