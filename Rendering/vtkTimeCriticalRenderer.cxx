@@ -769,7 +769,11 @@ void vtkTimeCriticalRenderer::ScaleDefaultCoefficients(double measured)
   c.Triangle *= factor;
   c.Pixel *= factor;
   in.Model.SetCoefficients(c);
-  in.SetCoefficientFloors(false);
+  // A measurement of this machine, like a calibration: the online fit may
+  // not make triangles cheaper than half of it (frames whose time does not
+  // follow their triangles, as a rank's that waits for the others to
+  // composite, would otherwise push the whole frame into the fixed part).
+  in.SetCoefficientFloors(true);
   in.ResetCalibrator(1.0); // one frame's worth: the next frames refine it
   in.Corrector.Reset();
   in.StillCorrector.Reset();

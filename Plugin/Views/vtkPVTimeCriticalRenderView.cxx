@@ -143,6 +143,18 @@ private:
   std::vector<std::pair<vtkObjectFactory*, std::string>> Disabled;
 };
 
+/// A client connected to a separate server (whose processes render).
+bool IsRemoteClient()
+{
+  vtkProcessModule* pm = vtkProcessModule::GetProcessModule();
+  if (!pm || vtkProcessModule::GetProcessType() != vtkProcessModule::PROCESS_CLIENT)
+  {
+    return false;
+  }
+  auto* session = vtkPVSession::SafeDownCast(pm->GetActiveSession());
+  return session && session->GetController(vtkPVSession::DATA_SERVER);
+}
+
 /// Start-up calibration re-renders the window on this process alone: safe
 /// only where no other process composites or mirrors its renders.
 bool CalibrationIsSafeHere()
@@ -162,11 +174,7 @@ bool CalibrationIsSafeHere()
     case vtkProcessModule::PROCESS_BATCH:
       return true;
     case vtkProcessModule::PROCESS_CLIENT:
-    {
-      // The builtin session has no separate server to talk to.
-      auto* session = vtkPVSession::SafeDownCast(pm->GetActiveSession());
-      return !session || !session->GetController(vtkPVSession::DATA_SERVER);
-    }
+      return !IsRemoteClient();
     default:
       return false;
   }
@@ -349,7 +357,7 @@ void vtkPVTimeCriticalRenderView::Render(bool interactive, bool skip_rendering)
 //------------------------------------------------------------------------------
 namespace
 {
-constexpr int RankStatisticsFields = 4;
+constexpr int RankStatisticsFields = 5;
 }
 
 void vtkPVTimeCriticalRenderView::GatherRankStatistics()
@@ -361,7 +369,8 @@ void vtkPVTimeCriticalRenderView::GatherRankStatistics()
   }
   const double mine[RankStatisticsFields] = { renderer->GetMeasuredFrameTime(),
     renderer->GetPredictedFrameTime(), renderer->GetLastTargetFrameTime(),
-    static_cast<double>(renderer->GetObjectTrianglesDrawn()) };
+    static_cast<double>(renderer->GetObjectTrianglesDrawn()),
+    renderer->GetFixedFrameTime() + renderer->GetSafetyMargin() };
   vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
   const int ranks = controller ? controller->GetNumberOfProcesses() : 1;
   if (ranks > 1 && !this->GetUseDistributedRenderingForRender())
@@ -408,6 +417,11 @@ double vtkPVTimeCriticalRenderView::GetRankPredictedFrameTime(int rank)
 double vtkPVTimeCriticalRenderView::GetRankTargetFrameTime(int rank)
 {
   return this->GetRankStatistic(rank, 2);
+}
+
+double vtkPVTimeCriticalRenderView::GetRankFixedFrameTime(int rank)
+{
+  return this->GetRankStatistic(rank, 4);
 }
 
 vtkIdType vtkPVTimeCriticalRenderView::GetRankTrianglesDrawn(int rank)
@@ -461,6 +475,11 @@ std::string vtkPVTimeCriticalRenderView::GetStatisticsText()
   if (!renderer)
   {
     return "Time-critical rendering unavailable (see the error messages)";
+  }
+  if (IsRemoteClient())
+  {
+    // The surfaces are drawn (and planned) by the server's processes.
+    return "Time-critical rendering on the server:\nits statistics are not sent to the client";
   }
   vtkIdType total = 0;
   const vtkIdType objects = renderer->GetNumberOfObjects();

@@ -109,7 +109,8 @@ public:
   /**
    * Per-rank statistics of the last distributed render (every rank's
    * renderer plans its own objects): its measured time (of the frame before,
-   * as GetMeasuredFrameTime()), predicted time, target and triangles drawn.
+   * as GetMeasuredFrameTime()), predicted time, target, fixed part of the
+   * prediction with the safety margin, and triangles drawn.
    * Gathered on every rank after each render that all ranks take part in;
    * with one process, rank 0 is this one. NaN or -1 for a bad rank.
    */
@@ -117,6 +118,7 @@ public:
   double GetRankMeasuredFrameTime(int rank);
   double GetRankPredictedFrameTime(int rank);
   double GetRankTargetFrameTime(int rank);
+  double GetRankFixedFrameTime(int rank);
   vtkIdType GetRankTrianglesDrawn(int rank);
   ///@}
 
@@ -146,7 +148,7 @@ protected:
   bool FullResolutionStillRenders = true;
   bool ShowStatistics = false;
   bool WarnedAboutOtherRepresentations = false;
-  std::vector<double> RankStatistics; // per rank: measured, predicted, target, triangles
+  std::vector<double> RankStatistics; // per rank: measured, predicted, target, triangles, fixed
   vtkNew<vtkTextActor> StatisticsActor;
 
 private:

@@ -69,7 +69,7 @@ view = CreateView("TimeCriticalRenderView")
 view.ViewSize = SIZE
 view.OrientationAxesVisibility = 0
 view.TargetFrameTime = TARGET_MS
-spheres = [Sphere(ThetaResolution=180, PhiResolution=180, Radius=0.45,
+spheres = [Sphere(ThetaResolution=260, PhiResolution=260, Radius=0.45,
                   Center=[i % 4, (i // 4) % 4, 0.0]) for i in range(16)]
 group = GroupDatasets(Input=spheres)
 rep = Show(group, view)
@@ -107,6 +107,14 @@ def check_against_one_rank():
     if min(full) <= 0:
         fail("a rank drew nothing at full resolution: %s (the data is not distributed)" % full)
 
+    # Each rank's full-resolution frame (measured by a second still render)
+    # is well above the target: the budget binds on every rank.
+    Render(view)
+    still = [server.GetRankMeasuredFrameTime(r) for r in range(ranks)]
+    target_ms = TARGET_MS
+    print("full-resolution frames: %s ms; target %.0f ms"
+          % (", ".join("%.0f" % (1000 * t) for t in still), target_ms))
+
     # Budgeted frames: a slow orbit, every frame planned on every rank.
     view.FullResolutionAtRest = 0
     camera = GetActiveCamera()
@@ -119,35 +127,42 @@ def check_against_one_rank():
             predicted = server.GetRankPredictedFrameTime(r)
             target = server.GetRankTargetFrameTime(r)
             triangles = server.GetRankTrianglesDrawn(r)
-            if abs(target - TARGET_MS / 1000.0) > 1e-9:
+            if frame in (0, WARM_UP, 39):
+                print("frame %d rank %d: predicted %.1f ms (fixed and margin %.1f), measured %.1f "
+                      "ms, %d triangles" % (frame, r, 1000 * predicted,
+                                            1000 * server.GetRankFixedFrameTime(r),
+                                            1000 * server.GetRankMeasuredFrameTime(r), triangles))
+            if abs(target - target_ms / 1000.0) > 1e-9:
                 fail("rank %d planned for %g s, not the target" % (r, target))
-            if frame >= WARM_UP:
+            fixed = server.GetRankFixedFrameTime(r)
+            if frame >= WARM_UP and fixed < 0.95 * target:
+                # Room for the objects: the plan must fit (above that, the
+                # coarsest levels are all a rank can do).
                 planned[r].append(predicted <= target * 1.0001)
-            if not 0 < triangles < full[r]:
-                fail("rank %d drew %d triangles of %d" % (r, triangles, full[r]))
+                if not 0 < triangles < full[r]:
+                    fail("rank %d drew %d triangles of %d" % (r, triangles, full[r]))
             if frame > 0:  # the measured time is that of the frame before
                 measured[r].append(server.GetRankMeasuredFrameTime(r))
     # Without start-up calibration (it cannot run on one rank alone) each
-    # rank's cost model learns from its first frames; after that its plan
-    # fits the target (a fixed part above the target would make that
-    # impossible: allowed on a few frames of a noisy machine).
+    # rank's cost model learns from its first frames; after that every plan
+    # with room for the objects fits the target.
     for r in range(ranks):
-        fitting = sum(planned[r]) / len(planned[r])
-        print("rank %d: %.0f%% of the frames after the first %d planned within the target"
-              % (r, 100 * fitting, WARM_UP))
-        if fitting < 0.8:
-            fail("rank %d planned only %.0f%% of its frames within the target" % (r, 100 * fitting))
-    summary = {"ranks": ranks, "target_ms": TARGET_MS, "per_rank": []}
+        print("rank %d: %d of %d frames after the first %d had room for the objects; "
+              "%d planned within the target"
+              % (r, len(planned[r]), 40 - WARM_UP, WARM_UP, sum(planned[r])))
+        if not all(planned[r]):
+            fail("rank %d: a plan with room for the objects exceeded the target" % r)
+    summary = {"ranks": ranks, "target_ms": target_ms, "per_rank": []}
     for r in range(ranks):
         times = [t * 1000.0 for t in measured[r]]
         entry = {"rank": r, "median_ms": statistics.median(times), "max_ms": max(times),
-                 "within_110_percent": sum(t <= 1.1 * TARGET_MS for t in times) / len(times),
+                 "within_110_percent": sum(t <= 1.1 * target_ms for t in times) / len(times),
                  "full_resolution_triangles": full[r]}
         summary["per_rank"].append(entry)
         print("rank %d: measured median %.1f ms, max %.1f ms, %.0f%% of frames within %.0f ms "
               "(target %.0f ms); %d triangles at full resolution"
               % (r, entry["median_ms"], entry["max_ms"], 100 * entry["within_110_percent"],
-                 1.1 * TARGET_MS, TARGET_MS, full[r]))
+                 1.1 * target_ms, target_ms, full[r]))
     with open(os.path.join(OUT, "parallel-frames.json"), "w") as stream:
         json.dump(summary, stream, indent=2)
     print("parallel view test passed")
