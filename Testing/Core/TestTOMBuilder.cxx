@@ -1314,13 +1314,18 @@ TEST(TOMBuilderQuality, AtMostTheBestVertexSubsetPeer)
   // over-simplified the rest, 3.0 times the best peer's error at 10% (7.1e-2);
   // fandisk trailed OpenMesh by 1.8-3.9 times. Now at 0.56-1.03 times the
   // best peer here; the bound, 1.1 times it, leaves room for rounding
-  // differences between compilers that may swap near-equal collapses.
+  // differences between compilers that may swap near-equal collapses. Teapot
+  // and bunny (open, with holes), where the TOM was already level or ahead,
+  // stay so. (Their boundaries do not decide these two figures: without
+  // PreserveBoundaries the errors are the same; BoundaryStaysOnItsPolyline
+  // pins the boundaries.)
   const QualityCase cases[] = {
     { "cow.obj", 0.10, 2.34e-2, "OpenMesh, normal flips 60" },
     { "cow.obj", 0.05, 4.80e-2, "OpenMesh, normal flips 90" },
     { "fandisk.obj", 0.25, 8.33e-5, "OpenMesh, normal flips 90" },
     { "fandisk.obj", 0.05, 1.37e-3, "OpenMesh, normal flips 90" },
     { "teapot.obj", 0.10, 8.64e-3, "meshoptimizer, LockBorder" },
+    { "stanford-bunny.obj", 0.10, 2.59e-3, "meshoptimizer, LockBorder" },
     { "homer.obj", 0.05, 1.64e-2, "OpenMesh, normal flips 90" },
   };
   for (const QualityCase& c : cases)
