@@ -433,17 +433,21 @@ def write_path(folder, path):
         json.dump(path, stream, indent=1)
 
 
+def _read_json(path):
+    """The JSON document in path, or None when it is missing or unreadable."""
+    try:
+        with open(path) as stream:
+            return json.load(stream)
+    except (OSError, ValueError):
+        return None
+
+
 def ensure_scene(folder, objects=DEFAULT_OBJECTS, seed=DEFAULT_SEED, frames=DEFAULT_FRAMES,
                  mesh=None, want_tom=True):
     """The scene in folder, written when missing or made with other settings;
     the camera path rewritten when the number of frames differs. Returns
     (scene.json dict, camera_path dict)."""
-    info = None
-    try:
-        with open(os.path.join(folder, "scene.json")) as stream:
-            info = json.load(stream)
-    except (OSError, ValueError):
-        pass
+    info = _read_json(os.path.join(folder, "scene.json"))
     mesh = mesh or default_mesh()
     wanted_source = mesh if os.path.isfile(mesh) else None
     stale = (info is None or info.get("format_version") != FORMAT_VERSION or
@@ -453,12 +457,7 @@ def ensure_scene(folder, objects=DEFAULT_OBJECTS, seed=DEFAULT_SEED, frames=DEFA
              not os.path.isfile(os.path.join(folder, "scene.vtm")))
     if stale:
         info = write_scene(folder, objects, seed, frames, mesh, want_tom)
-    path = None
-    try:
-        with open(os.path.join(folder, "camera_path.json")) as stream:
-            path = json.load(stream)
-    except (OSError, ValueError):
-        pass
+    path = _read_json(os.path.join(folder, "camera_path.json"))
     if path is None or path.get("frames") != frames:
         path = camera_path(info["layout"], frames)
         write_path(folder, path)

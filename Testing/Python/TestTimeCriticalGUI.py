@@ -24,8 +24,8 @@ def run():
     from paraview.simple import (AssignViewToLayout, CreateView, GetLayout, GetViews, LoadPlugin,
                                  OpenDataFile, Render, SaveScreenshot, Show, Sphere)
     import numpy as np
-    from vtkmodules.util.numpy_support import vtk_to_numpy
-    from vtkmodules.vtkIOImage import vtkPNGReader
+
+    from timecritical_testing import read_png  # Testing/Python, on PYTHONPATH
 
     import timecritical  # noqa: F401  (wraps the renderer the view returns)
 
@@ -73,15 +73,7 @@ def run():
         shutil.copyfile(path, baseline)
         return
 
-    def pixels(name):
-        reader = vtkPNGReader()
-        reader.SetFileName(name)
-        reader.Update()
-        image = reader.GetOutput()
-        dims = image.GetDimensions()
-        return vtk_to_numpy(image.GetPointData().GetScalars()).reshape(dims[1], dims[0], -1)[:, :, :3]
-
-    image, expected = pixels(path), pixels(baseline)
+    image, expected = read_png(path), read_png(baseline)
     if image.shape != expected.shape:
         raise AssertionError("screenshot %s, baseline %s" % (image.shape, expected.shape))
     differing = np.count_nonzero(np.abs(image.astype(int) - expected.astype(int)).max(axis=2) > 24)

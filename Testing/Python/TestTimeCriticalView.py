@@ -17,14 +17,12 @@ import numpy as np
 
 from paraview import servermanager
 from paraview.simple import *  # noqa: F401,F403
-from vtkmodules.util.numpy_support import vtk_to_numpy
 from vtkmodules.vtkCommonDataModel import vtkMultiBlockDataSet, vtkPolyData
-from vtkmodules.vtkIOImage import vtkPNGReader
 
 import timecritical  # noqa: F401  (wraps the renderer and mapper the view returns)
 from timecritical import TimeCriticalViews  # noqa: F401  (the view and representation classes)
 
-from timecritical_testing import ProxyTests, load_plugin, output_dir  # noqa: E402
+from timecritical_testing import ProxyTests, load_plugin, output_dir, read_png  # noqa: E402
 
 load_plugin(globals(), ["BuildTotallyOrderedMesh"])
 OUT = output_dir("view")
@@ -39,13 +37,7 @@ def sphere(resolution=200, center=(0, 0, 0)):
 def screenshot(view, name):
     path = os.path.join(OUT, name)
     SaveScreenshot(path, view, ImageResolution=SIZE)
-    reader = vtkPNGReader()
-    reader.SetFileName(path)
-    reader.Update()
-    image = reader.GetOutput()
-    pixels = vtk_to_numpy(image.GetPointData().GetScalars())
-    # Rows from the top (VTK images start at the bottom).
-    return pixels.reshape(image.GetDimensions()[1], image.GetDimensions()[0], -1)[::-1, :, :3]
+    return read_png(path)
 
 
 def leaf_mapper(view):

@@ -20,10 +20,8 @@ import time
 import numpy as np
 
 from paraview.simple import *  # noqa: F401,F403
-from vtkmodules.util.numpy_support import vtk_to_numpy
-from vtkmodules.vtkIOImage import vtkPNGReader
 
-from timecritical_testing import PLUGIN, output_dir
+from timecritical_testing import PLUGIN, output_dir, read_png
 
 OUT = output_dir("client-server")
 SIZE = [400, 300]
@@ -71,12 +69,7 @@ def render_scene(name):
     Render(view)
     path = os.path.join(OUT, name + ".png")
     SaveScreenshot(path, view, ImageResolution=SIZE)
-    reader = vtkPNGReader()
-    reader.SetFileName(path)
-    reader.Update()
-    image = reader.GetOutput()
-    dims = image.GetDimensions()
-    pixels = vtk_to_numpy(image.GetPointData().GetScalars()).reshape(dims[1], dims[0], -1)[:, :, :3]
+    pixels = read_png(path)
     Delete(rep)
     Delete(view)
     Delete(source)

@@ -24,13 +24,11 @@ import numpy as np
 
 from paraview import servermanager
 from paraview.simple import *  # noqa: F401,F403
-from vtkmodules.util.numpy_support import vtk_to_numpy
-from vtkmodules.vtkIOImage import vtkPNGReader
 
 import timecritical  # noqa: F401
 from timecritical import TimeCriticalViews  # noqa: F401
 
-from timecritical_testing import load_plugin
+from timecritical_testing import load_plugin, read_png
 
 load_plugin(globals(), ["BuildTotallyOrderedMesh"])
 OUT = os.environ.get("TIMECRITICAL_TEST_OUTPUT_DIR", ".")
@@ -53,15 +51,6 @@ def finish(status):
 def fail(message):
     sys.stderr.write("FAILED: %s\n" % message)
     finish(1)
-
-
-def read_png(path):
-    reader = vtkPNGReader()
-    reader.SetFileName(path)
-    reader.Update()
-    image = reader.GetOutput()
-    dims = image.GetDimensions()
-    return vtk_to_numpy(image.GetPointData().GetScalars()).reshape(dims[1], dims[0], -1)[:, :, :3]
 
 
 ranks = servermanager.vtkProcessModule.GetProcessModule().GetNumberOfLocalPartitions()

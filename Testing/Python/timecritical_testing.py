@@ -28,6 +28,20 @@ def load_plugin(namespace, names):
             sys.exit(1)
 
 
+def read_png(path):
+    """The RGB pixels of a PNG file as a numpy array, rows from the top (VTK's
+    images start at the bottom)."""
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+    from vtkmodules.vtkIOImage import vtkPNGReader
+    reader = vtkPNGReader()
+    reader.SetFileName(path)
+    reader.Update()
+    image = reader.GetOutput()
+    width, height = image.GetDimensions()[:2]
+    pixels = vtk_to_numpy(image.GetPointData().GetScalars()).reshape(height, width, -1)
+    return pixels[::-1, :, :3]
+
+
 def output_dir(prefix):
     """A new scratch folder, inside TIMECRITICAL_TEST_OUTPUT_DIR when set."""
     folder = os.environ.get("TIMECRITICAL_TEST_OUTPUT_DIR")
