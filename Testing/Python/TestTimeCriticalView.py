@@ -259,6 +259,29 @@ class TimeCriticalViewTests(ProxyTests, unittest.TestCase):
         self.assertEqual(builder.GetNumberOfBuiltLeaves(), 0)
         self.assertEqual(builder.GetNumberOfPassedLeaves(), 1)
 
+    def test_partitioned_input_visibility_and_opacity(self):
+        view = self.view()
+        spheres = [self.new(sphere(40, (3 * i, 0, 0))) for i in range(3)]
+        group = self.new(GroupDatasets(Input=spheres))
+        partitioned = self.new(ConvertToPartitionedDataSetCollection(Input=group))
+        rep = self.new(Show(partitioned, view))
+        self.assertEqual(rep.GetXMLName(), "TimeCriticalGeometryRepresentation")
+        view.ResetCamera()
+        Render(view)
+        renderer = view.GetClientSideObject().GetRenderer()
+        self.assertEqual(renderer.GetNumberOfObjects(), 3)
+        opaque = screenshot(view, "partitioned.png")
+        rep.Opacity = 0.4
+        translucent = screenshot(view, "partitioned-translucent.png")
+        self.assertGreater(np.count_nonzero(opaque != translucent), 1000)
+        self.assertEqual(renderer.GetNumberOfObjects(), 3)
+        Hide(partitioned, view)
+        Render(view)
+        self.assertEqual(renderer.GetNumberOfObjects(), 0)
+        Show(partitioned, view)
+        Render(view)
+        self.assertEqual(renderer.GetNumberOfObjects(), 3)
+
     def test_hierarchy_is_built_once_and_rebuilt_on_change(self):
         view = self.view()
         source = self.new(sphere(80))
