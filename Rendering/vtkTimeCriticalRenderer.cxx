@@ -825,9 +825,11 @@ bool vtkTimeCriticalRenderer::Calibrate()
 void vtkTimeCriticalRenderer::DeviceRender()
 {
   Internals& in = *this->Internal;
-  if (this->HoldResolutions)
+  if (this->HoldResolutions || this->GetSelector())
   {
-    // The mappers keep the resolutions of the last plan (render state).
+    // The mappers keep the resolutions of the last plan (render state). A
+    // hardware selection's passes are such renders too: they must all see
+    // the frame the user saw, and are no frames to plan or measure.
     in.FramePending = false;
     this->Superclass::DeviceRender();
     return;

@@ -217,7 +217,8 @@ public:
    * no culling, no optimization, no measurement (the statistics stay those
    * of that frame). For captures that draw one frame in several passes,
    * such as tiled screenshots, whose tiles would otherwise each get a plan
-   * of their own. Default off.
+   * of their own. Default off. Hardware selection (a vtkHardwareSelector
+   * on this renderer) always renders this way.
    */
   vtkSetMacro(HoldResolutions, bool);
   vtkGetMacro(HoldResolutions, bool);
