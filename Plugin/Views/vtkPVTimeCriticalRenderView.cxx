@@ -3,20 +3,17 @@
 
 #include "vtkActor.h"
 #include "vtkActorCollection.h"
-#include "vtkCallbackCommand.h"
 #include "vtkCollectionIterator.h"
-#include "vtkCommand.h"
+#include "vtkDataRepresentation.h"
 #include "vtkMultiProcessController.h"
 #include "vtkMultiresolutionPolyDataMapper.h"
 #include "vtkObjectFactory.h"
 #include "vtkObjectFactoryCollection.h"
 #include "vtkOpenGLRenderer.h"
-#include "vtkPVCompositeRepresentation.h"
 #include "vtkPVProcessWindow.h"
 #include "vtkPVSession.h"
 #include "vtkProcessModule.h"
 #include "vtkTextProperty.h"
-#include "vtkTimeCriticalCompositeRepresentation.h"
 #include "vtkTimeCriticalRenderer.h"
 #include "vtkVersion.h"
 
@@ -26,6 +23,7 @@
 #include <iomanip>
 #include <limits>
 #include <sstream>
+#include <string>
 #include <utility>
 #include <vector>
 
