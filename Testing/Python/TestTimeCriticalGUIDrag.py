@@ -21,13 +21,17 @@ The verdict is drawn here, from the log, after paraview has exited:
 * the drag turned the camera;
 * the last frame, after the release, was a still frame at full resolution.
 
+The XML's last event calls the set-up's _drag_finish() through the GUI's
+Python shell: it marks the end of the drag in the log (later frames are not
+the drag's) and saves a screenshot of the view, TimeCriticalGUIDrag.png.
+
 --control runs the same drag in a plain Render View and passes only if the
 verdict rejects it because no frame was budgeted (while the drag did reach
 the view: frames were drawn and the camera turned), which shows the checks
 can fail.
 
 Environment: TIMECRITICAL_PLUGIN, TIMECRITICAL_TEST_OUTPUT_DIR (the log
-TimeCriticalGUIDrag[Control].jsonl goes there), XDG_RUNTIME_DIR.
+TimeCriticalGUIDrag[Control].jsonl and .png go there), XDG_RUNTIME_DIR.
 """
 
 import json
@@ -58,7 +62,11 @@ def verdict(records, status):
     check(len(setups) == 1, "the set-up script did not finish (see the GUI's output)")
     setup = setups[0]
     check(status == 0, "paraview exited with status %d (event playback failed?)" % status)
-    frames = [r for r in records if "frame" in r]
+    marks = [i for i, r in enumerate(records) if r.get("drag") == "done"]
+    check(marks, "the XML's last event (the Python shell's call marking the end of the "
+          "drag) did not run")
+    # The frames of the drag: those before the mark (the screenshot renders after it).
+    frames = [r for r in records[:marks[0]] if "frame" in r]
     check(frames, "no frame was rendered after the set-up")
     check(any(r["camera"] != setup["camera"] for r in frames),
           "the camera never moved: the drag did not reach the view")
@@ -96,13 +104,15 @@ def verdict(records, status):
           % (last["triangles"], total))
     check(frames.index(last) > frames.index(interactive[-1]),
           "no still frame after the drag")
+    shots = [r["screenshot"] for r in records if "screenshot" in r]
+    check(shots and os.path.getsize(shots[0]) > 0, "no screenshot after the drag")
     return ("%d frames after the set-up: %d interactive (triangles %d-%d of %d, predicted "
-            "%.1f-%.1f ms for %.0f ms), last frame still with %d triangles"
+            "%.1f-%.1f ms for %.0f ms), last frame still with %d triangles; screenshot %s"
             % (len(frames), len(interactive), min(r["triangles"] for r in interactive),
                max(r["triangles"] for r in interactive), total,
                min(r["predicted_ms"] for r in interactive),
                max(r["predicted_ms"] for r in interactive), setup["target_ms"],
-               last["triangles"]))
+               last["triangles"], shots[0]))
 
 
 def main(argv):

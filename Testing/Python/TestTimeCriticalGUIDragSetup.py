@@ -9,6 +9,9 @@ sent to), shows a scene too heavy for the target (16 spheres of about 65,000
 triangles each) and logs every frame the view's render window completes, one
 JSON object a line, flushed and synced at once (the GUI may end abruptly).
 
+It also defines _drag_finish(), which the XML's last event calls through the
+GUI's Python shell: a mark in the log, then a screenshot of the view.
+
 Unlike TestTimeCriticalGUI.py it does not end the process: the GUI goes on
 to play the test events, then exits (--exit). Failures of the set-up are
 logged as {"error": ...} lines, for the verdict to report.
@@ -98,6 +101,20 @@ def _drag_setup():
                  "camera": list(renderer.GetActiveCamera().GetPosition())})
     # Keep the callback alive for the session.
     globals()["_drag_on_frame"] = on_frame
+
+    def finish():
+        """Called by the XML's last event (through the Python shell): marks
+        the end of the drag in the log, then saves a screenshot (its own
+        still render comes after the mark)."""
+        _drag_write({"drag": "done", "frames": on_frame.count})
+        from paraview.simple import SaveScreenshot
+        path = os.path.join(os.path.dirname(os.environ["TIMECRITICAL_DRAG_LOG"]),
+                            os.path.basename(os.environ["TIMECRITICAL_DRAG_LOG"])[:-len(".jsonl")]
+                            + ".png")
+        SaveScreenshot(path, view)
+        _drag_write({"screenshot": path})
+
+    globals()["_drag_finish"] = finish
 
 
 try:
