@@ -11,6 +11,16 @@
  * cannot decode). Errors throw std::runtime_error naming the file and the
  * line (OBJ, ascii PLY header/body) or element (binary PLY).
  *
+ * The readers and writers are hand-written on purpose (issue 10, item 4,
+ * measured with libopenmesh-dev 9.0): OpenMesh's IO is single precision (its
+ * importer takes positions as Vec3f, its OBJ reader parses floats, its PLY
+ * writer writes float properties), so every OBJ coordinate and every double
+ * PLY would change in its last bits, and with them the figures measured on
+ * the shared meshes; its PLY reader also skips `tristrips` (igea). VTK's
+ * readers are not an option in these VTK-free cores (and vtkPLYReader does
+ * not decode strips either). Testing/Core/TestMeshIOLoaders.cxx pins the
+ * loaded meshes by fingerprints and checks both facts against OpenMesh.
+ *
  * The real meshes of the project live outside the repository in the shared
  * data folder (see ../shared/data/README.md); FindSharedMesh() says whether
  * one is available so that tests can skip when the folder is absent.
