@@ -30,6 +30,13 @@ vtkTimeCriticalSurfaceRepresentation::vtkTimeCriticalSurfaceRepresentation()
   // before the data is delivered to the rendering processes.
   this->HierarchyBuilder->SetInputConnection(this->GeometryFilter->GetOutputPort());
   this->MultiBlockMaker->SetInputConnection(this->HierarchyBuilder->GetOutputPort());
+  // One progress from 0 to 1 for the whole update: the surface extraction
+  // takes its first tenth, the builds (far longer) the rest. The base
+  // class's observers would restart the bar between the stages.
+  this->GeometryFilter->RemoveObservers(vtkCommand::ProgressEvent);
+  this->MultiBlockMaker->RemoveObservers(vtkCommand::ProgressEvent);
+  this->GeometryFilter->AddObserver(vtkCommand::ProgressEvent, this,
+    &vtkTimeCriticalSurfaceRepresentation::ForwardBuildProgress);
   this->HierarchyBuilder->AddObserver(vtkCommand::ProgressEvent, this,
     &vtkTimeCriticalSurfaceRepresentation::ForwardBuildProgress);
 }
@@ -91,16 +98,16 @@ void vtkTimeCriticalSurfaceRepresentation::SetArrayIdNames(
 void vtkTimeCriticalSurfaceRepresentation::ForwardBuildProgress(
   vtkObject* caller, unsigned long, void*)
 {
-  // The builds dominate the representation's update: their progress is its.
-  auto* builder = static_cast<vtkAlgorithm*>(caller);
-  const double progress = builder->GetProgress();
+  auto* algorithm = static_cast<vtkAlgorithm*>(caller);
+  const double progress = algorithm->GetProgress();
   if (progress > 0.0 && progress < 1.0)
   {
-    this->UpdateProgress(progress);
+    this->UpdateProgress(
+      algorithm == this->GeometryFilter ? 0.1 * progress : 0.1 + 0.9 * progress);
   }
   if (this->AbortExecute)
   {
-    builder->SetAbortExecute(1);
+    algorithm->SetAbortExecute(1);
   }
 }
 

@@ -282,6 +282,20 @@ class TimeCriticalViewTests(ProxyTests, unittest.TestCase):
         Render(view)
         self.assertEqual(renderer.GetNumberOfObjects(), 3)
 
+    def test_builds_report_progress(self):
+        """ParaView's progress bar follows the representation's progress events."""
+        view = self.view()
+        spheres = [self.new(sphere(120, (3 * i, 0, 0))) for i in range(4)]
+        group = self.new(GroupDatasets(Input=spheres))
+        rep = self.new(Show(group, view))
+        surface = rep.GetClientSideObject().GetActiveRepresentation()
+        progress = []
+        surface.AddObserver("ProgressEvent", lambda caller, event: progress.append(caller.GetProgress()))
+        Render(view)
+        inside = [p for p in progress if 0.0 < p < 1.0]
+        self.assertGreaterEqual(len(inside), 4, progress)  # at least one per leaf built
+        self.assertEqual(inside, sorted(inside))
+
     def test_hierarchy_is_built_once_and_rebuilt_on_change(self):
         view = self.view()
         source = self.new(sphere(80))
