@@ -112,7 +112,7 @@ def readme_screenshots(view, source, rep):
     view.CameraViewUp = [0.0, 1.0, 0.0]
     view.CameraViewAngle = 40
     view.FullResolutionAtRest = 0
-    view.TargetFrameTime = 30
+    view.TargetFrameTime = 60
     view.ShowStatistics = 1
     for _ in range(8):  # the cost model settles
         Render(view)
