@@ -1874,6 +1874,17 @@ vtkSmartPointer<vtkPolyData> MakeMixedCells()
   mixed->GetCellData()->AddArray(patch);
   return mixed;
 }
+/// The multiresolution scene's image against a plain VTK scene's (name_multires, name_plain).
+void ExpectSameImages(Scene& scene, Scene& reference, const std::string& name)
+{
+  const std::string image = OutputPath(name + "_multires");
+  const std::string expected = OutputPath(name + "_plain");
+  scene.Save(image);
+  reference.Save(expected);
+  const auto result = tt::CompareImages(image, expected, PixelThreshold);
+  EXPECT_TRUE(tt::Passes(result, Tolerance))
+    << name << ": " << tt::Describe(result) << " (" << image << " against " << expected << ")";
+}
 }
 
 TEST(MultiresolutionMapper, VerticesLinesAndStripsOfNonTOMLeaves)
@@ -1916,14 +1927,7 @@ TEST(MultiresolutionMapper, VerticesLinesAndStripsOfNonTOMLeaves)
     {
       actor->GetProperty()->DeepCopy(scene.Actor->GetProperty());
     }
-    const std::string name = "MixedCells_" + std::to_string(representation);
-    const std::string image = OutputPath(name + "_multires");
-    const std::string expected = OutputPath(name + "_plain");
-    scene.Save(image);
-    reference.Save(expected);
-    const auto result = tt::CompareImages(image, expected, PixelThreshold);
-    EXPECT_TRUE(tt::Passes(result, Tolerance))
-      << name << ": " << tt::Describe(result) << " (" << image << " against " << expected << ")";
+    ExpectSameImages(scene, reference, "MixedCells_" + std::to_string(representation));
   }
 
   // Cell selection: the mixed leaf's cells of every type, by its own ids.
@@ -1987,14 +1991,7 @@ TEST(MultiresolutionMapper, TextureColorsCameraShiftScaleAndTranslucency)
   {
     scene.SetCamera(0.3 + view, 0.6, 3.0 - view);
     reference.SetCamera(0.3 + view, 0.6, 3.0 - view);
-    const std::string name = "TextureColors_" + std::to_string(view);
-    const std::string image = OutputPath(name + "_multires");
-    const std::string expected = OutputPath(name + "_plain");
-    scene.Save(image);
-    reference.Save(expected);
-    const auto result = tt::CompareImages(image, expected, PixelThreshold);
-    EXPECT_TRUE(tt::Passes(result, Tolerance))
-      << name << ": " << tt::Describe(result) << " (" << image << " against " << expected << ")";
+    ExpectSameImages(scene, reference, "TextureColors_" + std::to_string(view));
     EXPECT_GT(scene.CountForeground(), 5000);
   }
   EXPECT_GE(mapper->GetVertexBufferBuildCount(), 2) << "the shift moved with the camera";
