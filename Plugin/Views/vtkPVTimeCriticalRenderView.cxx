@@ -12,6 +12,10 @@
 #include "vtkOpenGLRenderer.h"
 #include "vtkPVProcessWindow.h"
 #include "vtkPVSession.h"
+#include "vtkPVTimeCriticalStatisticsInformation.h"
+#include "vtkSMProxy.h"
+#include "vtkSMProxyManager.h"
+#include "vtkSMSessionProxyManager.h"
 #include "vtkProcessModule.h"
 #include "vtkTextProperty.h"
 #include "vtkTimeCriticalRenderer.h"
@@ -350,6 +354,12 @@ void vtkPVTimeCriticalRenderView::Render(bool interactive, bool skip_rendering)
   }
   this->Superclass::Render(interactive, skip_rendering);
   this->GatherRankStatistics();
+  // Known while rendering (the session is active then), used afterwards.
+  this->RendersOnServer = IsRemoteClient();
+  if (this->ShowStatistics && this->RendersOnServer)
+  {
+    this->FetchServerStatistics(); // for the overlay of the next render
+  }
 }
 
 //------------------------------------------------------------------------------
@@ -469,15 +479,54 @@ void vtkPVTimeCriticalRenderView::AddRepresentationInternal(vtkDataRepresentatio
 //------------------------------------------------------------------------------
 std::string vtkPVTimeCriticalRenderView::GetStatisticsText()
 {
+  if (this->RendersOnServer)
+  {
+    // The surfaces are drawn (and planned) by the server's processes.
+    return this->ServerStatisticsText.empty() ? "Time-critical rendering on the server"
+                                              : this->ServerStatisticsText;
+  }
+  return this->GetLocalStatisticsText();
+}
+
+void vtkPVTimeCriticalRenderView::FetchServerStatistics()
+{
+  // This object is the client's half of a view proxy: find the proxy to ask
+  // the server (after the render, when the server waits for requests).
+  vtkSMSessionProxyManager* pxm =
+    vtkSMProxyManager::GetProxyManager()->GetActiveSessionProxyManager();
+  if (!pxm)
+  {
+    return;
+  }
+  vtkSMProxy* proxy = nullptr;
+  for (unsigned int i = 0, count = pxm->GetNumberOfProxies("views"); i < count && !proxy; ++i)
+  {
+    vtkSMProxy* candidate = pxm->GetProxy("views", pxm->GetProxyName("views", i));
+    if (candidate && candidate->GetClientSideObject() == this)
+    {
+      proxy = candidate;
+    }
+  }
+  if (proxy)
+  {
+    vtkNew<vtkPVTimeCriticalStatisticsInformation> statistics;
+    // The root of the processes that render (in a session without a
+    // separate render server, the data server's).
+    // (The information is gathered from the root only.)
+    const vtkTypeUInt32 where = (proxy->GetLocation() & vtkPVSession::RENDER_SERVER)
+      ? vtkPVSession::RENDER_SERVER
+      : vtkPVSession::DATA_SERVER;
+    proxy->GatherInformation(statistics, where);
+    this->ServerStatisticsText = statistics->GetText();
+  }
+}
+
+std::string vtkPVTimeCriticalRenderView::GetLocalStatisticsText()
+{
   vtkTimeCriticalRenderer* renderer = this->GetTimeCriticalRenderer();
   if (!renderer)
   {
     return "Time-critical rendering unavailable (see the error messages)";
-  }
-  if (IsRemoteClient())
-  {
-    // The surfaces are drawn (and planned) by the server's processes.
-    return "Time-critical rendering on the server:\nits statistics are not sent to the client";
   }
   vtkIdType total = 0;
   const vtkIdType objects = renderer->GetNumberOfObjects();

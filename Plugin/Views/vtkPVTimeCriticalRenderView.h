@@ -19,7 +19,9 @@
  *
  * ShowStatistics shows the renderer's statistics of the last frame in the
  * view (measured and predicted frame time, triangles drawn of the total,
- * objects drawn and culled, optimizer time).
+ * objects drawn and culled, optimizer time). A client connected to a server
+ * shows the server's (vtkPVTimeCriticalStatisticsInformation, gathered after
+ * each render while ShowStatistics is on).
  *
  * Parallel (pvbatch, pvserver with several ranks): each rank plans its own
  * objects. Start-up calibration renders would be composited by every rank and
@@ -102,8 +104,16 @@ public:
   vtkGetMacro(ShowStatistics, bool);
   ///@}
 
-  /// The statistics text ShowStatistics displays: the last frame's figures.
+  /**
+   * The statistics text ShowStatistics displays: the last frame's figures.
+   * On a client connected to a server, the server's (gathered after each
+   * render while ShowStatistics is on; the client's own renderer draws no
+   * objects there).
+   */
   std::string GetStatisticsText();
+
+  /// The figures of this process's renderer (what the server sends its clients).
+  std::string GetLocalStatisticsText();
 
   ///@{
   /**
@@ -142,6 +152,7 @@ protected:
   void Render(bool interactive, bool skip_rendering) override;
   void AddRepresentationInternal(vtkDataRepresentation* rep) override;
   void GatherRankStatistics();
+  void FetchServerStatistics();
   double GetRankStatistic(int rank, int field);
 
   bool ColorByResolution = false;
@@ -149,6 +160,8 @@ protected:
   bool ShowStatistics = false;
   bool WarnedAboutOtherRepresentations = false;
   std::vector<double> RankStatistics; // per rank: measured, predicted, target, triangles, fixed
+  std::string ServerStatisticsText;   // a client's copy of the server's statistics
+  bool RendersOnServer = false;       // a client of a separate server (as of the last render)
   vtkNew<vtkTextActor> StatisticsActor;
 
 private:

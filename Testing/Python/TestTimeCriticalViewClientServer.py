@@ -5,7 +5,8 @@ Starts a `pvserver` (TIMECRITICAL_PVSERVER, on a free port), connects to it,
 loads the plugin on the server and the client as the README says, shows a
 surface in the view and renders it on the server (the view always renders
 where the data is): the image must be the one the same scene gives in a
-builtin session.
+builtin session, and the client's statistics overlay shows the server's
+figures.
 
 Environment: TIMECRITICAL_PLUGIN, TIMECRITICAL_PVSERVER (the pvserver
 executable), TIMECRITICAL_TEST_OUTPUT_DIR.
@@ -21,6 +22,8 @@ import numpy as np
 
 from paraview.simple import *  # noqa: F401,F403
 
+import timecritical  # noqa: F401
+from timecritical import TimeCriticalViews  # noqa: F401  (the client's view class)
 from timecritical_testing import PLUGIN, output_dir, read_png
 
 OUT = output_dir("client-server")
@@ -52,8 +55,9 @@ def start_server(port):
     fail("pvserver did not start (%s)" % " ".join(command), server)
 
 
-def render_scene(name):
-    """The same scene in a new view of the current session: its screenshot's pixels."""
+def render_scene(name, statistics=None):
+    """The same scene in a new view of the current session: its screenshot's
+    pixels; with a list `statistics`, the view's statistics text is appended."""
     view = CreateView("TimeCriticalRenderView")
     view.ViewSize = SIZE
     view.OrientationAxesVisibility = 0
@@ -67,6 +71,13 @@ def render_scene(name):
     view.CameraFocalPoint = [0.0, 0.0, 0.0]
     view.CameraViewUp = [0.0, 1.0, 0.0]
     Render(view)
+    if statistics is not None:
+        view.ShowStatistics = 1
+        view.InteractiveRender()
+        view.InteractiveRender()
+        statistics.append(view.GetClientSideObject().GetStatisticsText())
+        view.ShowStatistics = 0
+        Render(view)
     path = os.path.join(OUT, name + ".png")
     SaveScreenshot(path, view, ImageResolution=SIZE)
     pixels = read_png(path)
@@ -82,11 +93,17 @@ try:
     Connect("localhost", port)
     LoadPlugin(PLUGIN, remote=True, ns=globals())
     LoadPlugin(PLUGIN, remote=False, ns=globals())
-    remote = render_scene("remote")
+    texts = []
+    remote = render_scene("remote", texts)
     Disconnect()
 finally:
     server.kill()
     server.wait()
+
+# The client's overlay shows the server's figures (the client draws no objects).
+print("statistics on the client:\n" + texts[0])
+if "Objects: 1 drawn" not in texts[0] or "of 44,400" not in texts[0]:
+    fail("the client's statistics are not the server's: %r" % texts[0])
 
 Connect()  # builtin
 builtin = render_scene("builtin")
