@@ -122,18 +122,24 @@ uint64_t HashLeaf(vtkPolyData* leaf)
   h = HashAttributes(leaf->GetPointData(), h);
   return HashAttributes(leaf->GetCellData(), h);
 }
+/// The cells a build simplifies (0 for a leaf that is not polydata).
+double SurfaceCells(vtkPolyData* leaf)
+{
+  return leaf ? static_cast<double>(leaf->GetNumberOfPolys() + leaf->GetNumberOfStrips()) : 0.0;
+}
 } // namespace
+
+struct vtkMultiresolutionHierarchyBuilder::CacheEntry
+{
+  uint64_t InputHash = 0;              // HashLeaf() of the leaf Output was built from
+  vtkIdType InputCells = 0;            // and its cell count (a second check)
+  vtkSmartPointer<vtkPolyData> Output; // the build
+  int Hierarchy = 0;
+};
 
 struct vtkMultiresolutionHierarchyBuilder::Internals
 {
-  struct Entry
-  {
-    uint64_t InputHash = 0;              // HashLeaf() of the leaf Output was built from
-    vtkIdType InputCells = 0;            // and its cell count (a second check)
-    vtkSmartPointer<vtkPolyData> Output; // the build
-    int Hierarchy = 0;
-  };
-  std::map<unsigned int, Entry> Cache; // by composite flat index (0 for polydata)
+  std::map<unsigned int, CacheEntry> Cache; // by composite flat index (0 for polydata)
 };
 
 //------------------------------------------------------------------------------
@@ -161,28 +167,28 @@ int vtkMultiresolutionHierarchyBuilder::RequestData(
   {
     return 1;
   }
+  std::map<unsigned int, CacheEntry> cache; // this execution's builds
+  double totalCells = 0.0, doneCells = 0.0;       // progress follows the surface cells
 
-  // The leaves, with their flat indices and triangle counts (for progress).
-  struct Leaf
-  {
-    unsigned int Index;
-    vtkPolyData* Data;
-  };
-  std::vector<Leaf> leaves;
-  vtkSmartPointer<vtkCompositeDataIterator> iterator;
   auto* compositeInput = vtkCompositeDataSet::SafeDownCast(input);
   auto* compositeOutput = vtkCompositeDataSet::SafeDownCast(output);
   if (compositeInput && compositeOutput)
   {
     compositeOutput->CopyStructure(compositeInput);
+    vtkSmartPointer<vtkCompositeDataIterator> iterator;
     iterator.TakeReference(compositeInput->NewIterator());
     iterator->SkipEmptyNodesOn();
+    for (iterator->InitTraversal(); !iterator->IsDoneWithTraversal(); iterator->GoToNextItem())
+    {
+      totalCells += SurfaceCells(vtkPolyData::SafeDownCast(iterator->GetCurrentDataObject()));
+    }
     for (iterator->InitTraversal(); !iterator->IsDoneWithTraversal(); iterator->GoToNextItem())
     {
       vtkDataObject* leaf = iterator->GetCurrentDataObject();
       if (auto* poly = vtkPolyData::SafeDownCast(leaf))
       {
-        leaves.push_back({ iterator->GetCurrentFlatIndex(), poly });
+        compositeOutput->SetDataSet(iterator,
+          this->ProcessLeaf(poly, iterator->GetCurrentFlatIndex(), cache, totalCells, doneCells));
       }
       else
       {
@@ -193,83 +199,58 @@ int vtkMultiresolutionHierarchyBuilder::RequestData(
   }
   else if (auto* poly = vtkPolyData::SafeDownCast(input))
   {
-    leaves.push_back({ 0, poly });
+    totalCells = SurfaceCells(poly);
+    output->ShallowCopy(this->ProcessLeaf(poly, 0, cache, totalCells, doneCells));
   }
   else
   {
     output->ShallowCopy(input);
     return 1;
   }
-
-  double totalCells = 0.0;
-  for (const Leaf& leaf : leaves)
-  {
-    totalCells += static_cast<double>(leaf.Data->GetNumberOfPolys() + leaf.Data->GetNumberOfStrips());
-  }
-
-  std::map<unsigned int, Internals::Entry> cache;
-  double doneCells = 0.0;
-  vtkSmartPointer<vtkCompositeDataIterator> outIterator;
-  if (compositeInput && compositeOutput)
-  {
-    outIterator.TakeReference(compositeInput->NewIterator());
-    outIterator->SkipEmptyNodesOn();
-    outIterator->InitTraversal();
-  }
-  for (const Leaf& leaf : leaves)
-  {
-    vtkPolyData* data = leaf.Data;
-    const double cells = static_cast<double>(data->GetNumberOfPolys() + data->GetNumberOfStrips());
-    vtkSmartPointer<vtkPolyData> result = data;
-
-    const bool carries = vtkTOMFieldData::HasTOMArrays(data) &&
-      (this->Hierarchy != MERGE_TREE || vtkMergeTreeFieldData::HasMergeTreeArrays(data));
-    if (carries || cells == 0.0)
-    {
-      ++this->NumberOfPassedLeaves;
-    }
-    else
-    {
-      const uint64_t hash = HashLeaf(data);
-      auto cached = this->Internal->Cache.find(leaf.Index);
-      if (cached != this->Internal->Cache.end() && cached->second.Hierarchy == this->Hierarchy &&
-        cached->second.InputHash == hash && cached->second.InputCells == data->GetNumberOfCells())
-      {
-        result = cached->second.Output;
-        ++this->NumberOfReusedLeaves;
-      }
-      else
-      {
-        result = this->Build(data, leaf.Index, totalCells > 0.0 ? doneCells / totalCells : 0.0,
-          totalCells > 0.0 ? cells / totalCells : 0.0);
-      }
-      if (result != data) // builds only: a leaf passed as it came costs nothing again
-      {
-        Internals::Entry& entry = cache[leaf.Index];
-        entry.InputHash = hash;
-        entry.InputCells = data->GetNumberOfCells();
-        entry.Output = result;
-        entry.Hierarchy = this->Hierarchy;
-      }
-    }
-
-    if (compositeOutput)
-    {
-      while (outIterator->GetCurrentFlatIndex() != leaf.Index)
-      {
-        outIterator->GoToNextItem();
-      }
-      compositeOutput->SetDataSet(outIterator, result);
-    }
-    else
-    {
-      output->ShallowCopy(result);
-    }
-    doneCells += cells;
-    this->UpdateProgress(totalCells > 0.0 ? doneCells / totalCells : 1.0);
-  }
   this->Internal->Cache.swap(cache);
   return 1;
+}
+
+//------------------------------------------------------------------------------
+vtkSmartPointer<vtkPolyData> vtkMultiresolutionHierarchyBuilder::ProcessLeaf(vtkPolyData* data,
+  unsigned int index, std::map<unsigned int, CacheEntry>& cache, double totalCells,
+  double& doneCells)
+{
+  const double cells = SurfaceCells(data);
+  vtkSmartPointer<vtkPolyData> result = data;
+  const bool carries = vtkTOMFieldData::HasTOMArrays(data) &&
+    (this->Hierarchy != MERGE_TREE || vtkMergeTreeFieldData::HasMergeTreeArrays(data));
+  if (carries || cells == 0.0)
+  {
+    ++this->NumberOfPassedLeaves;
+  }
+  else
+  {
+    const uint64_t hash = HashLeaf(data);
+    auto cached = this->Internal->Cache.find(index);
+    if (cached != this->Internal->Cache.end() && cached->second.Hierarchy == this->Hierarchy &&
+      cached->second.InputHash == hash && cached->second.InputCells == data->GetNumberOfCells())
+    {
+      result = cached->second.Output;
+      ++this->NumberOfReusedLeaves;
+    }
+    else
+    {
+      result = this->Build(data, index, totalCells > 0.0 ? doneCells / totalCells : 0.0,
+        totalCells > 0.0 ? cells / totalCells : 0.0);
+    }
+    if (result != data) // builds only: a leaf passed as it came costs nothing again
+    {
+      CacheEntry& entry = cache[index];
+      entry.InputHash = hash;
+      entry.InputCells = data->GetNumberOfCells();
+      entry.Output = result;
+      entry.Hierarchy = this->Hierarchy;
+    }
+  }
+  doneCells += cells;
+  this->UpdateProgress(totalCells > 0.0 ? doneCells / totalCells : 1.0);
+  return result;
 }
 
 //------------------------------------------------------------------------------

@@ -42,6 +42,7 @@
 
 class vtkPolyData;
 
+#include <map>    // for std::map
 #include <memory> // for std::unique_ptr
 
 class TIMECRITICALFILTERS_EXPORT vtkMultiresolutionHierarchyBuilder
@@ -88,6 +89,11 @@ protected:
 private:
   vtkMultiresolutionHierarchyBuilder(const vtkMultiresolutionHierarchyBuilder&) = delete;
   void operator=(const vtkMultiresolutionHierarchyBuilder&) = delete;
+
+  struct CacheEntry;
+  /// One polydata leaf's output: passed, reused from the last execution, or built.
+  vtkSmartPointer<vtkPolyData> ProcessLeaf(vtkPolyData* data, unsigned int index,
+    std::map<unsigned int, CacheEntry>& cache, double totalCells, double& doneCells);
 
   /// Build the hierarchy of one leaf (the leaf itself when the builder rejects it).
   vtkSmartPointer<vtkPolyData> Build(
