@@ -762,13 +762,13 @@ void vtkTimeCriticalRenderer::ScaleDefaultCoefficients(double measured)
     return;
   }
   const double factor = std::min(100.0, std::max(0.01, measured / predicted));
-  auto c = in.Model.GetCoefficients();
-  c.Frame *= factor;
-  c.DrawCall *= factor;
-  c.Object *= factor;
-  c.Triangle *= factor;
-  c.Pixel *= factor;
-  in.Model.SetCoefficients(c);
+  double theta[FeatureCount];
+  in.Model.GetFeatureWeights(theta);
+  for (double& weight : theta)
+  {
+    weight *= factor;
+  }
+  in.Model.SetFeatureWeights(theta);
   // A measurement of this machine, like a calibration: the online fit may
   // not make triangles cheaper than half of it (frames whose time does not
   // follow their triangles, as a rank's that waits for the others to
@@ -843,7 +843,7 @@ void vtkTimeCriticalRenderer::DeviceRender()
     in.FrameStartValid = true;
   }
 
-  const double target = (in.StillRequested || this->StillRendering) ? Infinity : this->GetEffectiveTargetFrameTime();
+  const double target = in.StillRequested ? Infinity : this->GetEffectiveTargetFrameTime();
   const bool still = !std::isfinite(target);
   in.EffectiveTarget = target;
 
