@@ -490,29 +490,24 @@ std::string vtkPVTimeCriticalRenderView::GetStatisticsText()
 
 void vtkPVTimeCriticalRenderView::FetchServerStatistics()
 {
-  // This object is the client's half of a view proxy: find the proxy to ask
-  // the server (after the render, when the server waits for requests).
+  // This object is the client's half of a view proxy: find the proxy (once)
+  // to ask the server, after the render, when the server waits for requests.
   vtkSMSessionProxyManager* pxm =
     vtkSMProxyManager::GetProxyManager()->GetActiveSessionProxyManager();
-  if (!pxm)
-  {
-    return;
-  }
-  vtkSMProxy* proxy = nullptr;
-  for (unsigned int i = 0, count = pxm->GetNumberOfProxies("views"); i < count && !proxy; ++i)
+  for (unsigned int i = 0, count = pxm ? pxm->GetNumberOfProxies("views") : 0;
+       i < count && !this->ViewProxy; ++i)
   {
     vtkSMProxy* candidate = pxm->GetProxy("views", pxm->GetProxyName("views", i));
     if (candidate && candidate->GetClientSideObject() == this)
     {
-      proxy = candidate;
+      this->ViewProxy = candidate;
     }
   }
-  if (proxy)
+  if (vtkSMProxy* proxy = this->ViewProxy)
   {
     vtkNew<vtkPVTimeCriticalStatisticsInformation> statistics;
-    // The root of the processes that render (in a session without a
-    // separate render server, the data server's).
-    // (The information is gathered from the root only.)
+    // The processes that render (the data server's in a session without a
+    // separate render server); the information comes from their root.
     const vtkTypeUInt32 where = (proxy->GetLocation() & vtkPVSession::RENDER_SERVER)
       ? vtkPVSession::RENDER_SERVER
       : vtkPVSession::DATA_SERVER;

@@ -39,11 +39,13 @@
 #include "vtkPVRenderView.h"
 
 #include "vtkNew.h"       // for vtkNew
-#include "vtkTextActor.h" // for vtkNew<vtkTextActor>
+#include "vtkTextActor.h"   // for vtkNew<vtkTextActor>
+#include "vtkWeakPointer.h" // for vtkWeakPointer
 
 #include <string> // for std::string
 #include <vector> // for std::vector
 
+class vtkSMProxy;
 class vtkTimeCriticalRenderer;
 
 class TIMECRITICALVIEWS_EXPORT vtkPVTimeCriticalRenderView : public vtkPVRenderView
@@ -162,6 +164,7 @@ protected:
   std::vector<double> RankStatistics; // per rank: measured, predicted, target, triangles, fixed
   std::string ServerStatisticsText;   // a client's copy of the server's statistics
   bool RendersOnServer = false;       // a client of a separate server (as of the last render)
+  vtkWeakPointer<vtkSMProxy> ViewProxy; // a client's proxy of this view, found once
   vtkNew<vtkTextActor> StatisticsActor;
 
 private:
