@@ -62,6 +62,15 @@ SurfaceStatus PrepareSurface(vtkAlgorithm* filter, vtkPolyData* input, PreparedS
 std::function<bool(double)> CoreProgress(vtkAlgorithm* filter);
 
 /**
+ * Upper bound of the builder filters' FeatureWeight: the core's weight of the
+ * boundary constraints (TOMBuildOptions::ConstraintWeight, 1000). A heavier
+ * weight would hold unlocked sharp edges harder than boundaries (past about
+ * 100 it acts as a lock already: LockFeatureEdges is the setting for that),
+ * and a huge one overflows the quadrics.
+ */
+constexpr double MaximumFeatureWeight = 1000.0;
+
+/**
  * Fills the collapse options of the cores from the settings of a builder
  * filter (vtkTOMBuilder, vtkMergeTreeBuilder), with CoreProgress: one mapping,
  * so that both filters simplify alike.
@@ -72,6 +81,8 @@ void SetCollapseOptions(Builder* filter, TOMBuildOptions& options)
   options.PreserveBoundaries = filter->GetPreserveBoundaries();
   options.PreserveFeatureEdges = filter->GetPreserveFeatureEdges();
   options.FeatureAngle = filter->GetFeatureAngle();
+  options.LockFeatureEdges = filter->GetLockFeatureEdges();
+  options.FeatureWeight = filter->GetFeatureWeight();
   options.MaximumNormalDeviation = filter->GetMaximumNormalDeviation();
   options.MinimumTriangleQuality = filter->GetMinimumTriangleQuality();
   options.Progress = CoreProgress(filter);

@@ -18,7 +18,8 @@
 vtkStandardNewMacro(vtkMergeTreeBuilder);
 
 vtkMergeTreeBuilder::vtkMergeTreeBuilder()
-  : LevelCostRatio(timecritical::MergeTreeBuildOptions().LevelCostRatio)
+  : FeatureWeight(timecritical::TOMBuildOptions().FeatureWeight)
+  , LevelCostRatio(timecritical::MergeTreeBuildOptions().LevelCostRatio)
   , ShadingWeight(timecritical::MergeTreeErrorOptions().ShadingWeight)
 {
 }
@@ -27,6 +28,15 @@ vtkMergeTreeBuilder::~vtkMergeTreeBuilder() = default;
 void vtkMergeTreeBuilder::SetFeatureAngle(double angle)
 {
   if (timecritical::SetClampedSetting(this, "FeatureAngle", angle, 0.0, 180.0, this->FeatureAngle))
+  {
+    this->Modified();
+  }
+}
+
+void vtkMergeTreeBuilder::SetFeatureWeight(double weight)
+{
+  if (timecritical::SetClampedSetting(this, "FeatureWeight", weight, 0.0,
+        timecritical::MaximumFeatureWeight, this->FeatureWeight))
   {
     this->Modified();
   }
@@ -146,6 +156,8 @@ void vtkMergeTreeBuilder::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "PreserveBoundaries: " << this->PreserveBoundaries << "\n";
   os << indent << "PreserveFeatureEdges: " << this->PreserveFeatureEdges << "\n";
   os << indent << "FeatureAngle: " << this->FeatureAngle << "\n";
+  os << indent << "LockFeatureEdges: " << this->LockFeatureEdges << "\n";
+  os << indent << "FeatureWeight: " << this->FeatureWeight << "\n";
   os << indent << "MaximumNormalDeviation: " << this->MaximumNormalDeviation << "\n";
   os << indent << "MinimumTriangleQuality: " << this->MinimumTriangleQuality << "\n";
   os << indent << "LevelCostRatio: " << this->LevelCostRatio << "\n";

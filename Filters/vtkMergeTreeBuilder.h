@@ -44,7 +44,9 @@ public:
   ///@}
 
   ///@{
-  /// Keep sharp edges in place as long as other collapses remain. Default on.
+  /// Keep sharp edges (dihedral angle above FeatureAngle): constraint planes
+  /// along them make collapses across them cost more (FeatureWeight), or lock
+  /// them (LockFeatureEdges). Default on.
   vtkSetMacro(PreserveFeatureEdges, bool);
   vtkGetMacro(PreserveFeatureEdges, bool);
   vtkBooleanMacro(PreserveFeatureEdges, bool);
@@ -54,6 +56,32 @@ public:
   /// Dihedral angle in degrees above which an edge is sharp, in [0, 180]. Default 45.
   void SetFeatureAngle(double angle);
   vtkGetMacro(FeatureAngle, double);
+  ///@}
+
+  ///@{
+  /**
+   * Lock sharp edges like open boundaries (with PreserveFeatureEdges on);
+   * off (default), weight them by FeatureWeight. As in vtkTOMBuilder, whose
+   * documentation says when each suits: a lock for clean CAD parts, the
+   * weights for organic meshes, where a fixed FeatureAngle also flags edges
+   * of smooth regions.
+   */
+  vtkSetMacro(LockFeatureEdges, bool);
+  vtkGetMacro(LockFeatureEdges, bool);
+  vtkBooleanMacro(LockFeatureEdges, bool);
+  ///@}
+
+  ///@{
+  /**
+   * Weight of the two constraint planes along each sharp edge when sharp
+   * edges are weighted, not locked: moving a vertex across a sharp edge
+   * costs this many times more than moving it off a face (see
+   * vtkTOMBuilder::SetFeatureWeight). 0 leaves sharp edges to the face
+   * quadrics alone. Clamped to [0, 1000]; NaN is rejected with an error.
+   * Default 10.
+   */
+  void SetFeatureWeight(double weight);
+  vtkGetMacro(FeatureWeight, double);
   ///@}
 
   ///@{
@@ -117,6 +145,8 @@ protected:
   bool PreserveBoundaries = true;
   bool PreserveFeatureEdges = true;
   double FeatureAngle = 45.0;
+  bool LockFeatureEdges = false;
+  double FeatureWeight; // the core's default (constructor)
   double MaximumNormalDeviation = 90.0;
   double MinimumTriangleQuality = 0.0;
   double LevelCostRatio; // the core's default (constructor)

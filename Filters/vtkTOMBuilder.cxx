@@ -15,8 +15,46 @@
 
 vtkStandardNewMacro(vtkTOMBuilder);
 
-vtkTOMBuilder::vtkTOMBuilder() = default;
+vtkTOMBuilder::vtkTOMBuilder()
+  : FeatureWeight(timecritical::TOMBuildOptions().FeatureWeight)
+{
+}
 vtkTOMBuilder::~vtkTOMBuilder() = default;
+
+void vtkTOMBuilder::SetFeatureAngle(double angle)
+{
+  if (timecritical::SetClampedSetting(this, "FeatureAngle", angle, 0.0, 180.0, this->FeatureAngle))
+  {
+    this->Modified();
+  }
+}
+
+void vtkTOMBuilder::SetFeatureWeight(double weight)
+{
+  if (timecritical::SetClampedSetting(this, "FeatureWeight", weight, 0.0,
+        timecritical::MaximumFeatureWeight, this->FeatureWeight))
+  {
+    this->Modified();
+  }
+}
+
+void vtkTOMBuilder::SetMaximumNormalDeviation(double angle)
+{
+  if (timecritical::SetClampedSetting(
+        this, "MaximumNormalDeviation", angle, 0.0, 180.0, this->MaximumNormalDeviation))
+  {
+    this->Modified();
+  }
+}
+
+void vtkTOMBuilder::SetMinimumTriangleQuality(double quality)
+{
+  if (timecritical::SetClampedSetting(
+        this, "MinimumTriangleQuality", quality, 0.0, 1.0, this->MinimumTriangleQuality))
+  {
+    this->Modified();
+  }
+}
 
 int vtkTOMBuilder::FillInputPortInformation(int, vtkInformation* info)
 {
@@ -86,6 +124,8 @@ void vtkTOMBuilder::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "PreserveBoundaries: " << this->PreserveBoundaries << "\n";
   os << indent << "PreserveFeatureEdges: " << this->PreserveFeatureEdges << "\n";
   os << indent << "FeatureAngle: " << this->FeatureAngle << "\n";
+  os << indent << "LockFeatureEdges: " << this->LockFeatureEdges << "\n";
+  os << indent << "FeatureWeight: " << this->FeatureWeight << "\n";
   os << indent << "MaximumNormalDeviation: " << this->MaximumNormalDeviation << "\n";
   os << indent << "MinimumTriangleQuality: " << this->MinimumTriangleQuality << "\n";
   os << indent << "NumberOfDroppedCells: " << this->NumberOfDroppedCells << "\n";

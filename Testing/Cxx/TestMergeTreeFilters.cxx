@@ -285,6 +285,23 @@ TEST(vtkMergeTreeBuilder, SettingsRejectNaNAndClamp)
   EXPECT_GT(builder->GetMTime(), before);
   builder->SetFeatureAngle(-5.0);
   EXPECT_EQ(builder->GetFeatureAngle(), 0.0);
+  // The feature-edge settings (forwarding: TestTOMFilters' FeatureEdgeSettingsReachTheCore).
+  EXPECT_FALSE(builder->GetLockFeatureEdges());
+  EXPECT_EQ(builder->GetFeatureWeight(), 10.0);
+  builder->SetFeatureWeight(std::numeric_limits<double>::quiet_NaN());
+  EXPECT_EQ(log.Errors.size(), 4u);
+  EXPECT_TRUE(log.ErrorContains("FeatureWeight must be a number in [0, 1000]; NaN ignored"));
+  EXPECT_EQ(builder->GetFeatureWeight(), 10.0);
+  builder->SetFeatureWeight(-2.0);
+  EXPECT_EQ(builder->GetFeatureWeight(), 0.0);
+  builder->SetFeatureWeight(std::numeric_limits<double>::infinity());
+  EXPECT_EQ(builder->GetFeatureWeight(), 1000.0);
+  builder->LockFeatureEdgesOn();
+  EXPECT_TRUE(builder->GetLockFeatureEdges());
+  std::ostringstream print;
+  builder->Print(print);
+  EXPECT_NE(print.str().find("LockFeatureEdges: 1"), std::string::npos) << print.str();
+  EXPECT_NE(print.str().find("FeatureWeight: 1000"), std::string::npos) << print.str();
 }
 
 TEST(vtkMergeTreeBuilder, LevelCostRatioTradesLevelsForAccuracy)
@@ -1257,7 +1274,8 @@ TEST(MergeTreeClasses, PrintSelfReportsSettingsAndState)
   builder->Print(text);
   reader->Print(text);
   extract->Print(text);
-  for (const char* expected : { "MinimumTriangleQuality: 0", "LevelCount: ", "Valid: 1",
+  for (const char* expected : { "MinimumTriangleQuality: 0", "LockFeatureEdges: 0",
+         "FeatureWeight: 10", "LevelCount: ", "Valid: 1",
          "PixelThreshold: 1", "RefinementMode: FIXED_ACCURACY", "ViewportSize: 512 x 512" })
   {
     EXPECT_NE(text.str().find(expected), std::string::npos) << expected;

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// Tests of vtkTOMBuilder, vtkExtractTOMResolution and vtkTOMFieldData.
+// Tests of vtkTOMBuilder, vtkExtractTOMResolution and vtkTOMFieldData (and of
+// vtkMergeTreeBuilder where it shares vtkTOMBuilder's input handling and settings).
 #include "FilterTestSupport.h"
+#include "TOMBuilder.h"
 #include "TOMMesh.h"
 #include "vtkExtractTOMResolution.h"
 #include "vtkMergeTreeBuilder.h"
@@ -24,9 +26,13 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <algorithm>
+#include <array>
 #include <fstream>
 #include <limits>
+#include <map>
 #include <set>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -336,6 +342,230 @@ TEST(vtkTOMBuilder, RealMeshWhenAvailable)
   ASSERT_TRUE(reader->Read(builder->GetOutput())) << reader->GetErrorMessage();
   EXPECT_EQ(reader->GetNumberOfTriangles(), 5804);
   EXPECT_LE(reader->GetBaseVertexCount(), 16);
+}
+
+TEST(vtkTOMBuilder, SettingsRejectNaNAndClamp)
+{
+  vtkNew<vtkTOMBuilder> builder;
+  MessageLog log(builder);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const vtkMTimeType before = builder->GetMTime();
+  builder->SetFeatureAngle(nan);
+  builder->SetFeatureWeight(nan);
+  builder->SetMaximumNormalDeviation(nan);
+  builder->SetMinimumTriangleQuality(nan);
+  ASSERT_EQ(log.Errors.size(), 4u);
+  EXPECT_TRUE(log.ErrorContains("FeatureWeight must be a number in [0, 1000]; NaN ignored"))
+    << log.AllErrors();
+  EXPECT_TRUE(log.ErrorContains("FeatureAngle must be a number"));
+  EXPECT_EQ(builder->GetMTime(), before);
+  // The core's defaults.
+  const timecritical::TOMBuildOptions core;
+  EXPECT_EQ(builder->GetFeatureAngle(), core.FeatureAngle);
+  EXPECT_EQ(builder->GetFeatureWeight(), core.FeatureWeight);
+  EXPECT_EQ(builder->GetLockFeatureEdges(), core.LockFeatureEdges);
+  EXPECT_EQ(builder->GetMaximumNormalDeviation(), core.MaximumNormalDeviation);
+  EXPECT_EQ(builder->GetMinimumTriangleQuality(), core.MinimumTriangleQuality);
+  // Out of range: clamped, as vtkSetClampMacro does. The weight's upper bound
+  // is the core's boundary constraint weight.
+  builder->SetFeatureWeight(-1.0);
+  EXPECT_EQ(builder->GetFeatureWeight(), 0.0);
+  EXPECT_GT(builder->GetMTime(), before);
+  builder->SetFeatureWeight(1e300);
+  EXPECT_EQ(builder->GetFeatureWeight(), core.ConstraintWeight);
+  builder->SetFeatureWeight(std::numeric_limits<double>::infinity());
+  EXPECT_EQ(builder->GetFeatureWeight(), core.ConstraintWeight);
+  builder->SetFeatureAngle(200.0);
+  EXPECT_EQ(builder->GetFeatureAngle(), 180.0);
+  builder->SetMinimumTriangleQuality(-1.0);
+  EXPECT_EQ(builder->GetMinimumTriangleQuality(), 0.0);
+  EXPECT_EQ(log.Errors.size(), 4u);
+  // Setting the same value again is no modification.
+  builder->SetFeatureWeight(3.0);
+  builder->LockFeatureEdgesOn();
+  const vtkMTimeType set = builder->GetMTime();
+  builder->SetFeatureWeight(3.0);
+  builder->SetLockFeatureEdges(true);
+  EXPECT_EQ(builder->GetMTime(), set);
+  std::ostringstream print;
+  builder->Print(print);
+  EXPECT_NE(print.str().find("LockFeatureEdges: 1"), std::string::npos) << print.str();
+  EXPECT_NE(print.str().find("FeatureWeight: 3"), std::string::npos) << print.str();
+}
+
+namespace
+{
+/**
+ * A closed cube [-0.5, 0.5]^3, each face split into n x n quads (two
+ * triangles each) that share the points of the cube's edges, so that its 12
+ * edges are 90-degree creases of one closed surface; every face-interior
+ * point is moved off its face by a fixed pseudo-random amount in
+ * [-noise/2, noise/2]. Bumpy faces make the collapse order depend on how the
+ * creases are held, flat ones would leave many ties.
+ */
+vtkSmartPointer<vtkPolyData> NoisyCube(int n, double noise)
+{
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  std::map<std::array<int, 3>, vtkIdType> ids;
+  auto id = [&](const std::array<int, 3>& ijk) {
+    auto found = ids.find(ijk);
+    if (found != ids.end())
+    {
+      return found->second;
+    }
+    const vtkIdType i = points->InsertNextPoint(
+      ijk[0] / double(n) - 0.5, ijk[1] / double(n) - 0.5, ijk[2] / double(n) - 0.5);
+    ids.emplace(ijk, i);
+    return i;
+  };
+  vtkNew<vtkCellArray> polys;
+  for (int a = 0; a < 3; ++a)
+  {
+    const int u = (a + 1) % 3, v = (a + 2) % 3;
+    for (int side : { 0, n })
+    {
+      for (int i = 0; i < n; ++i)
+      {
+        for (int j = 0; j < n; ++j)
+        {
+          auto corner = [&](int di, int dj) {
+            std::array<int, 3> ijk{};
+            ijk[a] = side;
+            ijk[u] = i + di;
+            ijk[v] = j + dj;
+            return id(ijk);
+          };
+          // Counter-clockwise in (u, v): normal +a, outward on the far side.
+          std::array<vtkIdType, 4> q{ corner(0, 0), corner(1, 0), corner(1, 1), corner(0, 1) };
+          if (side == 0)
+          {
+            std::swap(q[1], q[3]);
+          }
+          polys->InsertNextCell({ q[0], q[1], q[2] });
+          polys->InsertNextCell({ q[0], q[2], q[3] });
+        }
+      }
+    }
+  }
+  uint32_t state = 12345;
+  for (vtkIdType i = 0; i < points->GetNumberOfPoints(); ++i)
+  {
+    double p[3];
+    points->GetPoint(i, p);
+    int faces = 0, axis = 0;
+    for (int k = 0; k < 3; ++k)
+    {
+      if (std::abs(p[k]) == 0.5)
+      {
+        ++faces;
+        axis = k;
+      }
+    }
+    state = state * 1664525u + 1013904223u;
+    if (faces == 1)
+    {
+      p[axis] += (p[axis] > 0 ? 1.0 : -1.0) * noise * ((state >> 8) / double(1 << 24) - 0.5);
+      points->SetPoint(i, p);
+    }
+  }
+  auto cube = vtkSmartPointer<vtkPolyData>::New();
+  cube->SetPoints(points);
+  cube->SetPolys(polys);
+  return cube;
+}
+
+/// Whether two builds are the same TOM: the same points in the same order,
+/// the same substitutions and the same triangles.
+bool SameTOM(vtkPolyData* a, vtkPolyData* b)
+{
+  if (a->GetNumberOfPoints() != b->GetNumberOfPoints() ||
+    a->GetNumberOfCells() != b->GetNumberOfCells())
+  {
+    return false;
+  }
+  for (vtkIdType i = 0; i < a->GetNumberOfPoints(); ++i)
+  {
+    if (PointKey(a, i) != PointKey(b, i))
+    {
+      return false;
+    }
+  }
+  vtkDataArray* sa = a->GetPointData()->GetArray("TOMSubstitution");
+  vtkDataArray* sb = b->GetPointData()->GetArray("TOMSubstitution");
+  if (!sa || !sb)
+  {
+    return false;
+  }
+  for (vtkIdType i = 0; i < a->GetNumberOfPoints(); ++i)
+  {
+    if (sa->GetTuple1(i) != sb->GetTuple1(i))
+    {
+      return false;
+    }
+  }
+  for (vtkIdType c = 0; c < a->GetNumberOfCells(); ++c)
+  {
+    vtkIdType na, nb;
+    const vtkIdType* ia;
+    const vtkIdType* ib;
+    a->GetCellPoints(c, na, ia);
+    b->GetCellPoints(c, nb, ib);
+    if (na != nb || !std::equal(ia, ia + na, ib))
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
+/**
+ * LockFeatureEdges and FeatureWeight reach the core: on a noisy cube each
+ * setting changes the TOM, FeatureWeight 0 gives the TOM of unweighted
+ * creases (PreserveFeatureEdges off), and a lock ignores FeatureWeight.
+ */
+template <typename Builder>
+void ExpectFeatureEdgeSettingsReachTheCore()
+{
+  const auto cube = NoisyCube(8, 0.6 / 8);
+  auto build = [&cube](void (*configure)(Builder*)) {
+    vtkNew<Builder> builder;
+    MessageLog log(builder);
+    configure(builder);
+    builder->SetInputData(cube);
+    builder->Update();
+    EXPECT_TRUE(log.Errors.empty()) << log.AllErrors();
+    vtkSmartPointer<vtkPolyData> out = builder->GetOutput();
+    EXPECT_EQ(out->GetNumberOfPolys(), cube->GetNumberOfPolys());
+    return out;
+  };
+  const auto weighted = build([](Builder*) {});
+  const auto unweighted = build([](Builder* b) { b->SetFeatureWeight(0.0); });
+  const auto light = build([](Builder* b) { b->SetFeatureWeight(1.0); });
+  const auto plain = build([](Builder* b) { b->PreserveFeatureEdgesOff(); });
+  const auto locked = build([](Builder* b) { b->LockFeatureEdgesOn(); });
+  const auto lockedUnweighted = build([](Builder* b) {
+    b->LockFeatureEdgesOn();
+    b->SetFeatureWeight(0.0);
+  });
+  EXPECT_FALSE(SameTOM(weighted, unweighted)) << "FeatureWeight 0 not forwarded";
+  EXPECT_FALSE(SameTOM(weighted, light)) << "FeatureWeight 1 not forwarded";
+  EXPECT_FALSE(SameTOM(light, unweighted));
+  EXPECT_TRUE(SameTOM(unweighted, plain)) << "weight 0 should leave creases to the face quadrics";
+  EXPECT_FALSE(SameTOM(weighted, locked)) << "LockFeatureEdges not forwarded";
+  EXPECT_FALSE(SameTOM(plain, locked));
+  EXPECT_TRUE(SameTOM(locked, lockedUnweighted)) << "a lock does not use FeatureWeight";
+}
+}
+
+TEST(vtkTOMBuilder, FeatureEdgeSettingsReachTheCore)
+{
+  ExpectFeatureEdgeSettingsReachTheCore<vtkTOMBuilder>();
+}
+
+TEST(vtkMergeTreeBuilder, FeatureEdgeSettingsReachTheCore)
+{
+  ExpectFeatureEdgeSettingsReachTheCore<vtkMergeTreeBuilder>();
 }
 
 namespace

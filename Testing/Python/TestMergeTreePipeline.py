@@ -35,7 +35,7 @@ from vtkmodules.vtkRenderingCore import vtkCamera
 from timecritical import (vtkExtractViewDependentMesh, vtkMergeTreeBuilder,
                           vtkMergeTreeFieldData)
 
-from timecritical_testing import COW, ProxyTests, load_plugin, output_dir  # noqa: E402
+from timecritical_testing import COW, ProxyTests, load_plugin, noisy_cube, output_dir  # noqa: E402
 
 POINT_ARRAYS = ("TOMSubstitution", "MergeTreeLevel", "MergeTreeError", "MergeTreeRadius",
                 "MergeTreeConeAxis", "MergeTreeConeCosine")
@@ -225,6 +225,8 @@ class PluginFilters(ProxyTests, unittest.TestCase):
     def test_defaults(self):
         self.assertEqual(self.tree_proxy.PreserveBoundaries, 1)
         self.assertEqual(self.tree_proxy.FeatureAngle, 45.0)
+        self.assertEqual(self.tree_proxy.LockFeatureEdges, 0)
+        self.assertEqual(self.tree_proxy.FeatureWeight, 10.0)
         self.assertEqual(self.tree_proxy.MinimumTriangleQuality, 0.0)
         self.assertEqual(self.tree_proxy.LevelCostRatio, 2.0)
         self.assertEqual(self.tree_proxy.ShadingWeight, 1.0)
@@ -280,6 +282,37 @@ class PluginFilters(ProxyTests, unittest.TestCase):
         budget = self.fetch(extract).GetNumberOfPolys()
         self.assertLessEqual(budget, 600 + 16)
         self.assertGreater(budget, 400)
+
+    def test_feature_edge_properties(self):
+        # Lock Feature Edges and Feature Weight reach the filter: on a cube with
+        # bumpy faces each changes the merge tree's TOM; weight 0 gives that of
+        # unpreserved creases; a lock ignores the weight.
+        path = os.path.join(output_dir('TestMergeTreePipeline'), "noisy-cube.vtp")
+        writer = vtkXMLPolyDataWriter()
+        writer.SetFileName(path)
+        writer.SetInputData(noisy_cube())
+        writer.SetDataModeToBinary()
+        self.assertEqual(writer.Write(), 1)
+        tree = self.new(BuildMergeTree(Input=self.new(XMLPolyDataReader(FileName=[path]))))
+
+        def order(**properties):
+            for name, value in properties.items():
+                setattr(tree, name, value)
+            data = self.fetch(tree)
+            self.assertEqual(data.GetNumberOfPolys(), 12 * 8 * 8)
+            return (vtk_to_numpy(data.GetPoints().GetData()).copy(), triangles(data),
+                    merge_tree_arrays(data)["TOMSubstitution"])
+
+        def same(a, b):
+            return all(np.array_equal(x, y) for x, y in zip(a, b))
+
+        weighted = order()
+        unweighted = order(FeatureWeight=0.0)
+        self.assertFalse(same(weighted, unweighted), "FeatureWeight not forwarded")
+        self.assertTrue(same(unweighted, order(PreserveFeatureEdges=0, FeatureWeight=10.0)))
+        locked = order(PreserveFeatureEdges=1, LockFeatureEdges=1)
+        self.assertFalse(same(weighted, locked), "LockFeatureEdges not forwarded")
+        self.assertTrue(same(locked, order(FeatureWeight=0.0)))
 
     def test_save_binary_and_extract_again(self):
         path = os.path.join(output_dir('TestMergeTreePipeline'), "plugin-merge-tree.vtp")

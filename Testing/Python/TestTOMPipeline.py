@@ -40,7 +40,7 @@ from vtkmodules.vtkFiltersSources import vtkSphereSource
 from vtkmodules.vtkIOGeometry import vtkOBJReader
 from vtkmodules.vtkIOXML import vtkXMLPolyDataReader, vtkXMLPolyDataWriter
 
-from timecritical_testing import COW, output_dir  # noqa: E402
+from timecritical_testing import COW, noisy_cube, output_dir  # noqa: E402
 
 
 
@@ -632,7 +632,8 @@ class BuilderOptions(unittest.TestCase):
         surfaces = {"sphere": sphere(40), "grid": decorate(polydata(points, polys))}
         settings = [dict(), dict(PreserveBoundaries=False), dict(PreserveFeatureEdges=False),
                     dict(FeatureAngle=10.0), dict(MaximumNormalDeviation=20.0),
-                    dict(MinimumTriangleQuality=0.4),
+                    dict(MinimumTriangleQuality=0.4), dict(LockFeatureEdges=True),
+                    dict(FeatureWeight=0.0), dict(FeatureWeight=100.0),
                     dict(PreserveBoundaries=False, PreserveFeatureEdges=False,
                          MinimumTriangleQuality=1.0, MaximumNormalDeviation=0.0)]
         for name, surface in surfaces.items():
@@ -668,6 +669,48 @@ class BuilderOptions(unittest.TestCase):
             self.assertTrue(np.all(signed > 0), "flipped triangles at %g" % resolution)
             self.assertAlmostEqual(signed.sum(), (n - 1) ** 2, places=6,
                                    msg="outline changed at resolution %g" % resolution)
+
+    def test_feature_edge_settings(self):
+        # LockFeatureEdges and FeatureWeight reach the core (as in TestTOMFilters'
+        # FeatureEdgeSettingsReachTheCore): on a cube with bumpy faces each
+        # changes the TOM; weight 0 gives the TOM of PreserveFeatureEdges off;
+        # a lock ignores the weight.
+        cube = noisy_cube()
+
+        def tom(**options):
+            builder, messages = build(cube, **options)
+            self.check_valid(builder, messages)
+            out = builder.GetOutput()
+            return points_of(out), triangles_of(out), tom_arrays(out)[0]
+
+        def same(a, b):
+            return all(np.array_equal(x, y) for x, y in zip(a, b))
+
+        weighted = tom()
+        self.assertEqual(len(weighted[1]), cube.GetNumberOfPolys())
+        unweighted = tom(FeatureWeight=0.0)
+        locked = tom(LockFeatureEdges=True)
+        self.assertFalse(same(weighted, unweighted), "FeatureWeight not forwarded")
+        self.assertFalse(same(weighted, tom(FeatureWeight=1.0)), "FeatureWeight not forwarded")
+        self.assertTrue(same(unweighted, tom(PreserveFeatureEdges=False)))
+        self.assertFalse(same(weighted, locked), "LockFeatureEdges not forwarded")
+        self.assertTrue(same(locked, tom(LockFeatureEdges=True, FeatureWeight=0.0)))
+
+    def test_feature_weight_bad_values(self):
+        builder = vtkTOMBuilder()
+        messages = Messages(builder)
+        self.assertEqual(builder.GetFeatureWeight(), 10.0)
+        self.assertFalse(builder.GetLockFeatureEdges())
+        builder.SetFeatureWeight(float("nan"))
+        self.assertEqual(len(messages.errors), 1)
+        self.assertIn("FeatureWeight must be a number in [0, 1000]", messages.errors[0])
+        self.assertEqual(builder.GetFeatureWeight(), 10.0)
+        builder.SetFeatureWeight(-1.0)
+        self.assertEqual(builder.GetFeatureWeight(), 0.0)
+        builder.SetFeatureWeight(float("inf"))
+        self.assertEqual(builder.GetFeatureWeight(), 1000.0)
+        builder.LockFeatureEdgesOn()
+        self.assertTrue(builder.GetLockFeatureEdges())
 
     def test_rebuild_a_tom(self):
         builder, messages = build(sphere(30))

@@ -22,7 +22,7 @@ from paraview import servermanager
 from paraview.simple import *  # noqa: F401,F403
 from vtkmodules.util.numpy_support import vtk_to_numpy
 
-from timecritical_testing import COW, load_plugin, output_dir  # noqa: E402
+from timecritical_testing import COW, load_plugin, noisy_cube, output_dir  # noqa: E402
 
 
 
@@ -98,6 +98,8 @@ class PluginChecks:
         self.assertEqual(self.tom_proxy.PreserveBoundaries, 1)
         self.assertEqual(self.tom_proxy.PreserveFeatureEdges, 1)
         self.assertEqual(self.tom_proxy.FeatureAngle, 45.0)
+        self.assertEqual(self.tom_proxy.LockFeatureEdges, 0)
+        self.assertEqual(self.tom_proxy.FeatureWeight, 10.0)
         self.assertEqual(self.tom_proxy.MinimumTriangleQuality, 0.0)
 
     def check_extracted(self, extracted, proxy=None):
@@ -193,6 +195,59 @@ class CowPlugin(PluginChecks, unittest.TestCase):
     @staticmethod
     def make_source():
         return OpenDataFile(COW)
+
+
+class FeatureEdgeProperties(unittest.TestCase):
+    """Lock Feature Edges and Feature Weight reach the filter and change the TOM
+    of a cube with bumpy faces (the C++ and wrapped tests check the same)."""
+
+    def setUp(self):
+        from vtkmodules.vtkIOXML import vtkXMLPolyDataWriter
+        path = os.path.join(output_dir("TestTOMPlugin"), "noisy-cube.vtp")
+        writer = vtkXMLPolyDataWriter()
+        writer.SetFileName(path)
+        writer.SetInputData(noisy_cube())
+        writer.SetDataModeToBinary()  # appended mode: see test_save_and_reload
+        self.assertEqual(writer.Write(), 1)
+        self.reader = XMLPolyDataReader(FileName=[path])
+        self.tom_proxy = BuildTotallyOrderedMesh(Input=self.reader)
+
+    def tearDown(self):
+        Delete(self.tom_proxy)
+        Delete(self.reader)
+
+    def tom(self, **properties):
+        for name, value in properties.items():
+            setattr(self.tom_proxy, name, value)
+        data = fetch(self.tom_proxy)
+        self.assertEqual(data.GetNumberOfPolys(), 12 * 8 * 8)
+        a = arrays(data)
+        return a["points"], a["triangles"], a["TOMSubstitution"]
+
+    @staticmethod
+    def same(a, b):
+        return all(np.array_equal(x, y) for x, y in zip(a, b))
+
+    def test_properties_change_the_tom(self):
+        self.assertEqual(self.tom_proxy.LockFeatureEdges, 0)
+        self.assertEqual(self.tom_proxy.FeatureWeight, 10.0)
+        weighted = self.tom()
+        unweighted = self.tom(FeatureWeight=0.0)
+        self.assertFalse(self.same(weighted, unweighted), "FeatureWeight not forwarded")
+        # Weight 0 leaves the creases to the face quadrics: the TOM of unpreserved creases.
+        self.assertTrue(self.same(unweighted, self.tom(PreserveFeatureEdges=0, FeatureWeight=10.0)))
+        locked = self.tom(PreserveFeatureEdges=1, LockFeatureEdges=1)
+        self.assertFalse(self.same(weighted, locked), "LockFeatureEdges not forwarded")
+        # A lock does not use the weight.
+        self.assertTrue(self.same(locked, self.tom(FeatureWeight=0.0)))
+        self.assertTrue(self.same(weighted, self.tom(LockFeatureEdges=0, FeatureWeight=10.0)))
+
+    def test_out_of_range_weight_is_clamped_by_the_filter(self):
+        # The proxy passes any value; the filter clamps it to [0, 1000].
+        heaviest = self.tom(FeatureWeight=1000.0)
+        self.assertFalse(self.same(heaviest, self.tom(FeatureWeight=10.0)))
+        self.assertTrue(self.same(heaviest, self.tom(FeatureWeight=5000.0)))
+        self.assertTrue(self.same(self.tom(FeatureWeight=0.0), self.tom(FeatureWeight=-3.0)))
 
 
 class NotATOM(unittest.TestCase):

@@ -42,6 +42,56 @@ def read_png(path):
     return pixels[::-1, :, :3]
 
 
+def noisy_cube(n=8, noise=0.6 / 8):
+    """A closed cube [-0.5, 0.5]^3 as a vtkPolyData, each face split into n x n
+    quads (two triangles each) that share the points of the cube's edges, so
+    that its 12 edges are 90-degree creases of one closed surface; every
+    face-interior point moves off its face by a fixed pseudo-random amount in
+    [-noise/2, noise/2], so that the collapse order depends on how the creases
+    are held (the C++ tests' NoisyCube, TestTOMFilters.cxx)."""
+    from vtkmodules.vtkCommonCore import vtkPoints
+    from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkPolyData
+    ids = {}
+    coordinates = []
+
+    def point(ijk):
+        if ijk not in ids:
+            ids[ijk] = len(coordinates)
+            coordinates.append([c / n - 0.5 for c in ijk])
+        return ids[ijk]
+
+    polys = vtkCellArray()
+    for a in range(3):
+        u, v = (a + 1) % 3, (a + 2) % 3
+        for side in (0, n):
+            for i in range(n):
+                for j in range(n):
+                    def corner(di, dj):
+                        ijk = [0, 0, 0]
+                        ijk[a], ijk[u], ijk[v] = side, i + di, j + dj
+                        return point(tuple(ijk))
+                    # Counter-clockwise in (u, v): normal +a, outward on the far side.
+                    q = [corner(0, 0), corner(1, 0), corner(1, 1), corner(0, 1)]
+                    if side == 0:
+                        q[1], q[3] = q[3], q[1]
+                    polys.InsertNextCell(3, (q[0], q[1], q[2]))
+                    polys.InsertNextCell(3, (q[0], q[2], q[3]))
+    points = vtkPoints()
+    points.SetDataTypeToDouble()
+    state = 12345
+    for p in coordinates:
+        on = [k for k in range(3) if abs(p[k]) == 0.5]
+        state = (state * 1664525 + 1013904223) % 2 ** 32
+        if len(on) == 1:
+            k = on[0]
+            p[k] += (1.0 if p[k] > 0 else -1.0) * noise * ((state >> 8) / float(1 << 24) - 0.5)
+        points.InsertNextPoint(*p)
+    cube = vtkPolyData()
+    cube.SetPoints(points)
+    cube.SetPolys(polys)
+    return cube
+
+
 def output_dir(prefix):
     """A new scratch folder, inside TIMECRITICAL_TEST_OUTPUT_DIR when set."""
     folder = os.environ.get("TIMECRITICAL_TEST_OUTPUT_DIR")
