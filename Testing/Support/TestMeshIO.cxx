@@ -1,6 +1,19 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "TestMeshIO.h"
 
+// OpenMesh's VectorT leaves its coordinates uninitialised by design, which
+// GCC 12 reports (maybe-uninitialized) where they are copied.
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#endif
+#include <OpenMesh/Core/IO/IOManager.hh>
+#include <OpenMesh/Core/IO/importer/BaseImporter.hh>
+#include <OpenMesh/Core/System/omstream.hh>
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic pop
+#endif
+
 #include <algorithm>
 #include <array>
 #include <cctype>
@@ -10,8 +23,12 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
+#include <iterator>
 #include <limits>
+#include <mutex>
 #include <numeric>
+#include <sstream>
 #include <stdexcept>
 #include <system_error>
 #include <unordered_map>
@@ -36,11 +53,6 @@ constexpr uint64_t MaxPointId = std::numeric_limits<uint32_t>::max();
   throw std::runtime_error(message);
 }
 
-std::string LineWhere(std::size_t line)
-{
-  return "line " + std::to_string(line);
-}
-
 std::string ReadWholeFile(const std::string& path)
 {
   std::error_code ec;
@@ -58,15 +70,8 @@ std::string ReadWholeFile(const std::string& path)
   {
     Fail(path, "", "cannot open file for reading");
   }
-  in.seekg(0, std::ios::end);
-  const std::streamoff size = in.tellg();
-  if (size < 0)
-  {
-    Fail(path, "", "cannot determine the file size");
-  }
-  in.seekg(0, std::ios::beg);
-  std::string data(static_cast<std::size_t>(size), '\0');
-  if (size > 0 && !in.read(&data[0], size))
+  std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (in.bad())
   {
     Fail(path, "", "read error");
   }
@@ -82,407 +87,6 @@ std::string Lower(std::string text)
   return text;
 }
 
-inline bool IsBlank(char c)
-{
-  return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f';
-}
-
-// from_chars rejects a leading '+'; OBJ/PLY writers occasionally emit one.
-bool ParseDouble(const char* first, const char* last, double& value)
-{
-  if (first < last && *first == '+')
-  {
-    ++first;
-  }
-  const std::from_chars_result result = std::from_chars(first, last, value);
-  return result.ec == std::errc() && result.ptr == last;
-}
-
-bool ParseInt(const char* first, const char* last, int64_t& value)
-{
-  if (first < last && *first == '+')
-  {
-    ++first;
-  }
-  const std::from_chars_result result = std::from_chars(first, last, value);
-  return result.ec == std::errc() && result.ptr == last;
-}
-
-void FanTriangulate(const std::vector<uint32_t>& polygon, std::vector<uint32_t>& triangles)
-{
-  for (std::size_t k = 1; k + 1 < polygon.size(); ++k)
-  {
-    triangles.push_back(polygon[0]);
-    triangles.push_back(polygon[k]);
-    triangles.push_back(polygon[k + 1]);
-  }
-}
-
-//------------------------------------------------------------------------------
-// OBJ
-
-void ParseOBJLine(const std::string& path, std::size_t lineNumber, const char* p, const char* end,
-  TriangleMesh& mesh, std::vector<uint32_t>& polygon, uint64_t& maxPositive,
-  std::size_t& maxPositiveLine)
-{
-  auto skipBlanks = [&]()
-  {
-    while (p < end && IsBlank(*p))
-    {
-      ++p;
-    }
-  };
-  auto nextToken = [&](const char*& first, const char*& last)
-  {
-    skipBlanks();
-    first = p;
-    while (p < end && !IsBlank(*p))
-    {
-      ++p;
-    }
-    last = p;
-    return first < last;
-  };
-
-  const char* keyFirst;
-  const char* keyLast;
-  if (!nextToken(keyFirst, keyLast))
-  {
-    return; // empty line
-  }
-  const std::size_t keyLength = static_cast<std::size_t>(keyLast - keyFirst);
-  if (keyLength != 1 || (*keyFirst != 'v' && *keyFirst != 'f'))
-  {
-    return; // vt, vn, vp, g, o, s, usemtl, mtllib, l, p, ...
-  }
-
-  const char* first;
-  const char* last;
-  if (*keyFirst == 'v')
-  {
-    for (int axis = 0; axis < 3; ++axis)
-    {
-      if (!nextToken(first, last))
-      {
-        Fail(path, LineWhere(lineNumber), "vertex with fewer than 3 coordinates");
-      }
-      double value;
-      if (!ParseDouble(first, last, value))
-      {
-        Fail(
-          path, LineWhere(lineNumber), "bad vertex coordinate '" + std::string(first, last) + "'");
-      }
-      mesh.Points.push_back(value);
-    }
-    if (mesh.Points.size() / 3 > MaxPointId)
-    {
-      Fail(path, LineWhere(lineNumber), "more than 2^32-1 vertices");
-    }
-    return; // w and vertex colors are ignored
-  }
-
-  // Face: corners v, v/vt, v//vn, v/vt/vn; only v matters.
-  polygon.clear();
-  const int64_t vertexCount = static_cast<int64_t>(mesh.Points.size() / 3);
-  while (nextToken(first, last))
-  {
-    const char* slash = static_cast<const char*>(std::memchr(first, '/', last - first));
-    const char* indexLast = slash ? slash : last;
-    int64_t index;
-    if (!ParseInt(first, indexLast, index))
-    {
-      Fail(path, LineWhere(lineNumber), "bad face corner '" + std::string(first, last) + "'");
-    }
-    if (index == 0)
-    {
-      Fail(path, LineWhere(lineNumber), "vertex index 0 (OBJ indices start at 1)");
-    }
-    uint64_t id;
-    if (index < 0)
-    {
-      if (-index > vertexCount)
-      {
-        Fail(path, LineWhere(lineNumber),
-          "relative vertex index " + std::to_string(index) + " before the first vertex (" +
-            std::to_string(vertexCount) + " vertices read so far)");
-      }
-      id = static_cast<uint64_t>(vertexCount + index);
-    }
-    else
-    {
-      id = static_cast<uint64_t>(index - 1);
-      if (id >= MaxPointId)
-      {
-        Fail(path, LineWhere(lineNumber), "vertex index " + std::to_string(index) + " too large");
-      }
-      // Positive indices are checked once all vertices are known.
-      if (id >= maxPositive)
-      {
-        if (id > maxPositive || maxPositiveLine == 0)
-        {
-          maxPositiveLine = lineNumber;
-        }
-        maxPositive = id;
-      }
-    }
-    polygon.push_back(static_cast<uint32_t>(id));
-  }
-  if (polygon.size() < 3)
-  {
-    Fail(path, LineWhere(lineNumber),
-      "face with " + std::to_string(polygon.size()) + " vertices (at least 3 needed)");
-  }
-  FanTriangulate(polygon, mesh.Triangles);
-}
-
-//------------------------------------------------------------------------------
-// PLY
-
-enum class ScalarType
-{
-  Int8,
-  UInt8,
-  Int16,
-  UInt16,
-  Int32,
-  UInt32,
-  Float32,
-  Float64
-};
-
-bool ParseScalarType(const std::string& name, ScalarType& type)
-{
-  static const std::pair<const char*, ScalarType> names[] = { { "char", ScalarType::Int8 },
-    { "int8", ScalarType::Int8 }, { "uchar", ScalarType::UInt8 }, { "uint8", ScalarType::UInt8 },
-    { "short", ScalarType::Int16 }, { "int16", ScalarType::Int16 },
-    { "ushort", ScalarType::UInt16 }, { "uint16", ScalarType::UInt16 },
-    { "int", ScalarType::Int32 }, { "int32", ScalarType::Int32 }, { "uint", ScalarType::UInt32 },
-    { "uint32", ScalarType::UInt32 }, { "float", ScalarType::Float32 },
-    { "float32", ScalarType::Float32 }, { "double", ScalarType::Float64 },
-    { "float64", ScalarType::Float64 } };
-  for (const auto& entry : names)
-  {
-    if (name == entry.first)
-    {
-      type = entry.second;
-      return true;
-    }
-  }
-  return false;
-}
-
-std::size_t ScalarSize(ScalarType type)
-{
-  switch (type)
-  {
-    case ScalarType::Int8:
-    case ScalarType::UInt8:
-      return 1;
-    case ScalarType::Int16:
-    case ScalarType::UInt16:
-      return 2;
-    case ScalarType::Int32:
-    case ScalarType::UInt32:
-    case ScalarType::Float32:
-      return 4;
-    case ScalarType::Float64:
-      return 8;
-  }
-  return 0;
-}
-
-bool IsIntegral(ScalarType type)
-{
-  return type != ScalarType::Float32 && type != ScalarType::Float64;
-}
-
-struct PLYProperty
-{
-  std::string Name;
-  ScalarType Type = ScalarType::Float32; // of the items for a list
-  bool IsList = false;
-  ScalarType CountType = ScalarType::UInt8;
-};
-
-struct PLYElement
-{
-  std::string Name;
-  uint64_t Count = 0;
-  std::vector<PLYProperty> Properties;
-  std::size_t HeaderLine = 0;
-};
-
-enum class PLYFormat
-{
-  Ascii,
-  BinaryLittleEndian,
-  BinaryBigEndian
-};
-
-struct PLYHeader
-{
-  PLYFormat Format = PLYFormat::Ascii;
-  std::vector<PLYElement> Elements;
-  std::size_t BodyOffset = 0; // first byte after the end_header line
-  std::size_t BodyLine = 0;   // line number of the first body line (ascii)
-};
-
-PLYHeader ParsePLYHeader(const std::string& path, const std::string& data)
-{
-  PLYHeader header;
-  std::size_t offset = 0;
-  std::size_t lineNumber = 0;
-  bool haveFormat = false;
-  bool done = false;
-  while (!done)
-  {
-    if (offset >= data.size())
-    {
-      Fail(path, LineWhere(lineNumber), "header without end_header");
-    }
-    ++lineNumber;
-    std::size_t lineEnd = data.find('\n', offset);
-    const bool lastLine = lineEnd == std::string::npos;
-    if (lastLine)
-    {
-      lineEnd = data.size();
-    }
-    const std::string line = data.substr(offset, lineEnd - offset);
-    offset = lastLine ? data.size() : lineEnd + 1;
-
-    std::vector<std::string> words;
-    {
-      std::size_t i = 0;
-      while (i < line.size())
-      {
-        while (i < line.size() && IsBlank(line[i]))
-        {
-          ++i;
-        }
-        const std::size_t start = i;
-        while (i < line.size() && !IsBlank(line[i]))
-        {
-          ++i;
-        }
-        if (i > start)
-        {
-          words.push_back(line.substr(start, i - start));
-        }
-      }
-    }
-    const std::string where = "header line " + std::to_string(lineNumber);
-    if (lineNumber == 1)
-    {
-      if (words.size() != 1 || words[0] != "ply")
-      {
-        Fail(path, where, "not a PLY file (first line is not 'ply')");
-      }
-      continue;
-    }
-    if (words.empty())
-    {
-      continue;
-    }
-    const std::string& keyword = words[0];
-    if (keyword == "comment" || keyword == "obj_info")
-    {
-      continue;
-    }
-    if (keyword == "format")
-    {
-      if (words.size() != 3)
-      {
-        Fail(path, where, "malformed format line");
-      }
-      if (words[1] == "ascii")
-      {
-        header.Format = PLYFormat::Ascii;
-      }
-      else if (words[1] == "binary_little_endian")
-      {
-        header.Format = PLYFormat::BinaryLittleEndian;
-      }
-      else if (words[1] == "binary_big_endian")
-      {
-        header.Format = PLYFormat::BinaryBigEndian;
-      }
-      else
-      {
-        Fail(path, where, "unknown format '" + words[1] + "'");
-      }
-      if (words[2] != "1.0")
-      {
-        Fail(path, where, "unsupported PLY version '" + words[2] + "'");
-      }
-      haveFormat = true;
-    }
-    else if (keyword == "element")
-    {
-      int64_t count = -1;
-      if (words.size() != 3 ||
-        !ParseInt(words[2].data(), words[2].data() + words[2].size(), count) || count < 0)
-      {
-        Fail(path, where, "malformed element line");
-      }
-      PLYElement element;
-      element.Name = words[1];
-      element.Count = static_cast<uint64_t>(count);
-      element.HeaderLine = lineNumber;
-      header.Elements.push_back(element);
-    }
-    else if (keyword == "property")
-    {
-      if (header.Elements.empty())
-      {
-        Fail(path, where, "property before any element");
-      }
-      PLYProperty property;
-      if (words.size() == 5 && words[1] == "list")
-      {
-        property.IsList = true;
-        if (!ParseScalarType(words[2], property.CountType) ||
-          !ParseScalarType(words[3], property.Type))
-        {
-          Fail(path, where, "unknown list type in '" + line + "'");
-        }
-        if (!IsIntegral(property.CountType))
-        {
-          Fail(path, where, "list count type must be integral");
-        }
-        property.Name = words[4];
-      }
-      else if (words.size() == 3)
-      {
-        if (!ParseScalarType(words[1], property.Type))
-        {
-          Fail(path, where, "unknown property type '" + words[1] + "'");
-        }
-        property.Name = words[2];
-      }
-      else
-      {
-        Fail(path, where, "malformed property line");
-      }
-      header.Elements.back().Properties.push_back(property);
-    }
-    else if (keyword == "end_header")
-    {
-      done = true;
-    }
-    else
-    {
-      Fail(path, where, "unknown header keyword '" + keyword + "'");
-    }
-  }
-  if (!haveFormat)
-  {
-    Fail(path, "header", "no format line");
-  }
-  header.BodyOffset = offset;
-  header.BodyLine = lineNumber + 1;
-  return header;
-}
-
 bool HostIsLittleEndian()
 {
   const uint16_t one = 1;
@@ -491,205 +95,655 @@ bool HostIsLittleEndian()
   return first == 1;
 }
 
-/// Position in the body, for messages.
-struct PLYContext
+inline bool IsBlank(char c)
 {
-  const std::string* Path = nullptr;
-  const PLYElement* Element = nullptr;
-  uint64_t Index = 0;
+  return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f';
+}
 
-  std::string Where(const std::string& extra = std::string()) const
+/// Whitespace-separated words of one line.
+std::vector<std::string> SplitWords(const std::string& line)
+{
+  std::vector<std::string> words;
+  std::size_t i = 0;
+  while (i < line.size())
   {
-    std::string where = "element '" + this->Element->Name + "' #" + std::to_string(this->Index);
-    if (!extra.empty())
+    while (i < line.size() && IsBlank(line[i]))
     {
-      where += " (" + extra + ")";
+      ++i;
     }
-    return where;
+    const std::size_t start = i;
+    while (i < line.size() && !IsBlank(line[i]))
+    {
+      ++i;
+    }
+    if (i > start)
+    {
+      words.push_back(line.substr(start, i - start));
+    }
   }
-};
+  return words;
+}
 
-class PLYBinaryReader
+//------------------------------------------------------------------------------
+// OpenMesh's readers into plain arrays
+
+/**
+ * Receives what OpenMesh's OBJ and PLY readers report. No halfedge structure
+ * (an OpenMesh TriMesh would reject or split non-manifold input such as the
+ * cow's pinch vertex), so every point of the file is kept, in file order,
+ * used or not, and every face is fan-triangulated in file order. OpenMesh
+ * passes face corners through without checking them, so they are checked
+ * here; the first problem is kept in Error (no exception is thrown through
+ * OpenMesh's code).
+ */
+class ArrayImporter final : public OpenMesh::IO::BaseImporter
 {
 public:
-  PLYBinaryReader(const std::string& data, std::size_t offset, bool bigEndian, PLYContext& context)
-    : Cursor(reinterpret_cast<const unsigned char*>(data.data()) + offset)
-    , End(reinterpret_cast<const unsigned char*>(data.data()) + data.size())
-    , Swap(bigEndian == HostIsLittleEndian())
-    , Context(context)
+  using VertexHandle = OpenMesh::VertexHandle;
+  using FaceHandle = OpenMesh::FaceHandle;
+  using HalfedgeHandle = OpenMesh::HalfedgeHandle;
+  using EdgeHandle = OpenMesh::EdgeHandle;
+  using Status = OpenMesh::Attributes::StatusInfo;
+
+  ArrayImporter(TriangleMesh& mesh, bool oneBased)
+    : Mesh(mesh)
+    , OneBased(oneBased)
   {
   }
 
-  double ReadDouble(ScalarType type)
+  std::size_t Faces = 0;   ///< add_face calls
+  std::size_t Corners = 0; ///< their corners, all together
+  std::string Error;       ///< first problem found
+
+  // OpenMesh 9's OBJ reader calls add_vertex(Vec3f); its PLY reader calls
+  // add_vertex() then set_point(Vec3f). The double overload is taken too, for
+  // a reader that would pass doubles.
+  VertexHandle add_vertex(const OpenMesh::Vec3f& point) override
   {
-    switch (type)
+    return this->AddPoint(point[0], point[1], point[2]);
+  }
+  VertexHandle add_vertex(const OpenMesh::Vec3d& point) override
+  {
+    return this->AddPoint(point[0], point[1], point[2]);
+  }
+  VertexHandle add_vertex() override { return this->AddPoint(0.0, 0.0, 0.0); }
+  void set_point(VertexHandle vertex, const OpenMesh::Vec3f& point) override
+  {
+    const std::size_t id = static_cast<std::size_t>(vertex.idx());
+    if (vertex.idx() < 0 || id >= this->Mesh.NumberOfPoints())
     {
-      case ScalarType::Int8:
-        return static_cast<double>(this->Read<int8_t>());
-      case ScalarType::UInt8:
-        return static_cast<double>(this->Read<uint8_t>());
-      case ScalarType::Int16:
-        return static_cast<double>(this->Read<int16_t>());
-      case ScalarType::UInt16:
-        return static_cast<double>(this->Read<uint16_t>());
-      case ScalarType::Int32:
-        return static_cast<double>(this->Read<int32_t>());
-      case ScalarType::UInt32:
-        return static_cast<double>(this->Read<uint32_t>());
-      case ScalarType::Float32:
-        return static_cast<double>(this->Read<float>());
-      case ScalarType::Float64:
-        return this->Read<double>();
+      this->Note("OpenMesh set the point of vertex " + std::to_string(vertex.idx()) + " of " +
+        std::to_string(this->Mesh.NumberOfPoints()));
+      return;
     }
-    return 0.0;
+    for (int axis = 0; axis < 3; ++axis)
+    {
+      this->Mesh.Points[3 * id + axis] = point[axis];
+    }
+    this->CheckFinite(id);
   }
 
-  int64_t ReadInt(ScalarType type)
+  FaceHandle add_face(const VHandles& corners) override
   {
-    switch (type)
+    const std::size_t face = this->Faces++;
+    this->Corners += corners.size();
+    const std::string where = "face #" + std::to_string(face) + " (in file order): ";
+    if (corners.size() < 3)
     {
-      case ScalarType::Int8:
-        return this->Read<int8_t>();
-      case ScalarType::UInt8:
-        return this->Read<uint8_t>();
-      case ScalarType::Int16:
-        return this->Read<int16_t>();
-      case ScalarType::UInt16:
-        return this->Read<uint16_t>();
-      case ScalarType::Int32:
-        return this->Read<int32_t>();
-      case ScalarType::UInt32:
-        return this->Read<uint32_t>();
-      case ScalarType::Float32:
-      case ScalarType::Float64:
-        break;
+      this->Note(
+        where + std::to_string(corners.size()) + " distinct vertices (at least 3 needed)");
+      return FaceHandle(static_cast<int>(face));
     }
-    Fail(*this->Context.Path, this->Context.Where(), "integer expected");
+    const int64_t n = static_cast<int64_t>(this->Mesh.NumberOfPoints());
+    for (const VertexHandle corner : corners)
+    {
+      if (corner.idx() < 0 || corner.idx() >= n)
+      {
+        const std::string count = std::to_string(n);
+        this->Note(this->OneBased
+            ? where + "vertex " + std::to_string(corner.idx() + 1) + " out of range 1.." + count +
+              " (1-based, relative indices resolved by OpenMesh; the file has " + count +
+              " vertices)"
+            : where + "vertex index " + std::to_string(corner.idx()) + " out of range [0, " +
+              count + ")");
+        return FaceHandle(static_cast<int>(face));
+      }
+    }
+    for (std::size_t k = 1; k + 1 < corners.size(); ++k)
+    {
+      for (const std::size_t c : { std::size_t(0), k, k + 1 })
+      {
+        this->Mesh.Triangles.push_back(static_cast<uint32_t>(corners[c].idx()));
+      }
+    }
+    return FaceHandle(static_cast<int>(face));
   }
 
-  void Skip(ScalarType type, uint64_t count = 1)
+  std::size_t n_vertices() const override { return this->Mesh.NumberOfPoints(); }
+  std::size_t n_faces() const override { return this->Faces; }
+  std::size_t n_edges() const override { return 0; }
+
+  // What the loaders do not keep.
+  HalfedgeHandle add_edge(VertexHandle, VertexHandle) override { return HalfedgeHandle(); }
+  FaceHandle add_face(HalfedgeHandle) override { return FaceHandle(); }
+  void add_face_texcoords(FaceHandle, VertexHandle, const std::vector<OpenMesh::Vec2f>&) override
   {
-    const uint64_t bytes = ScalarSize(type) * count;
-    if (count > static_cast<uint64_t>(this->End - this->Cursor) ||
-      bytes > static_cast<uint64_t>(this->End - this->Cursor))
+  }
+  void add_face_texcoords(FaceHandle, VertexHandle, const std::vector<OpenMesh::Vec3f>&) override
+  {
+  }
+  void set_face_texindex(FaceHandle, int) override {}
+  void set_halfedge(VertexHandle, HalfedgeHandle) override {}
+  void set_normal(VertexHandle, const OpenMesh::Vec3f&) override {}
+  void set_normal(VertexHandle, const OpenMesh::Vec3d&) override {}
+  void set_color(VertexHandle, const OpenMesh::Vec3uc&) override {}
+  void set_color(VertexHandle, const OpenMesh::Vec4uc&) override {}
+  void set_color(VertexHandle, const OpenMesh::Vec3f&) override {}
+  void set_color(VertexHandle, const OpenMesh::Vec4f&) override {}
+  void set_texcoord(VertexHandle, const OpenMesh::Vec2f&) override {}
+  void set_status(VertexHandle, const Status&) override {}
+  void set_next(HalfedgeHandle, HalfedgeHandle) override {}
+  void set_face(HalfedgeHandle, FaceHandle) override {}
+  void request_face_texcoords2D() override {}
+  void set_texcoord(HalfedgeHandle, const OpenMesh::Vec2f&) override {}
+  void set_texcoord(VertexHandle, const OpenMesh::Vec3f&) override {}
+  void set_texcoord(HalfedgeHandle, const OpenMesh::Vec3f&) override {}
+  void set_status(HalfedgeHandle, const Status&) override {}
+  void set_color(EdgeHandle, const OpenMesh::Vec3uc&) override {}
+  void set_color(EdgeHandle, const OpenMesh::Vec4uc&) override {}
+  void set_color(EdgeHandle, const OpenMesh::Vec3f&) override {}
+  void set_color(EdgeHandle, const OpenMesh::Vec4f&) override {}
+  void set_status(EdgeHandle, const Status&) override {}
+  void set_normal(FaceHandle, const OpenMesh::Vec3f&) override {}
+  void set_normal(FaceHandle, const OpenMesh::Vec3d&) override {}
+  void set_color(FaceHandle, const OpenMesh::Vec3uc&) override {}
+  void set_color(FaceHandle, const OpenMesh::Vec4uc&) override {}
+  void set_color(FaceHandle, const OpenMesh::Vec3f&) override {}
+  void set_color(FaceHandle, const OpenMesh::Vec4f&) override {}
+  void set_status(FaceHandle, const Status&) override {}
+  void add_texture_information(int, std::string) override {}
+
+private:
+  VertexHandle AddPoint(double x, double y, double z)
+  {
+    if (this->Mesh.NumberOfPoints() >= MaxPointId)
     {
-      this->Truncated();
+      this->Note("more than 2^32-1 vertices");
+      return VertexHandle();
     }
-    this->Cursor += bytes;
+    this->Mesh.Points.insert(this->Mesh.Points.end(), { x, y, z });
+    this->CheckFinite(this->Mesh.NumberOfPoints() - 1);
+    return VertexHandle(static_cast<int>(this->Mesh.NumberOfPoints() - 1));
+  }
+
+  void CheckFinite(std::size_t id)
+  {
+    for (int axis = 0; axis < 3; ++axis)
+    {
+      if (!std::isfinite(this->Mesh.Points[3 * id + axis]))
+      {
+        this->Note("vertex #" + std::to_string(id) +
+          ": non-finite coordinate (OpenMesh reads coordinates as float: values beyond "
+          "float range, 3.4e38, overflow)");
+        return;
+      }
+    }
+  }
+
+  void Note(const std::string& problem)
+  {
+    if (this->Error.empty())
+    {
+      this->Error = problem;
+    }
+  }
+
+  TriangleMesh& Mesh;
+  bool OneBased;
+};
+
+/// Captures what OpenMesh writes to omerr and omlog (connected to std::cerr
+/// and std::clog by default) while alive, for the exception of a failed read.
+/// It swaps the streams' buffers rather than reconnecting OpenMesh's
+/// multiplexers, whose connect() leaks a small object each time.
+class CaptureOpenMeshLog
+{
+public:
+  CaptureOpenMeshLog()
+    : Err(std::cerr.rdbuf(this->Text.rdbuf()))
+    , Log(std::clog.rdbuf(this->Text.rdbuf()))
+  {
+  }
+  ~CaptureOpenMeshLog()
+  {
+    ::omerr().flush();
+    ::omlog().flush();
+    std::cerr.rdbuf(this->Err);
+    std::clog.rdbuf(this->Log);
+  }
+  CaptureOpenMeshLog(const CaptureOpenMeshLog&) = delete;
+  CaptureOpenMeshLog& operator=(const CaptureOpenMeshLog&) = delete;
+
+  /// What OpenMesh wrote so far, lines joined by "; ".
+  std::string Messages()
+  {
+    ::omerr().flush();
+    ::omlog().flush();
+    std::string text = this->Text.str();
+    while (!text.empty() && (text.back() == '\n' || text.back() == '\r'))
+    {
+      text.pop_back();
+    }
+    std::string joined;
+    for (const char c : text)
+    {
+      joined += c == '\n' ? std::string("; ") : std::string(1, c);
+    }
+    return joined.empty() ? std::string("no message") : joined;
   }
 
 private:
-  template <class T>
-  T Read()
+  std::ostringstream Text;
+  std::streambuf* Err;
+  std::streambuf* Log;
+};
+
+/// Reads `data` with OpenMesh's reader for `format` ("OBJ", "PLY") into the
+/// importer; throws (naming the file and quoting OpenMesh) when it fails.
+void ReadWithOpenMesh(const std::string& path, const std::string& data, const char* format,
+  ArrayImporter& importer)
+{
+  // OpenMesh's log streams and std::cerr are process-wide.
+  static std::mutex mutex;
+  const std::lock_guard<std::mutex> lock(mutex);
+  CaptureOpenMeshLog log;
+  std::istringstream in(data);
+  OpenMesh::IO::Options options;
+  if (!OpenMesh::IO::IOManager().read(in, format, importer, options))
   {
-    if (static_cast<std::size_t>(this->End - this->Cursor) < sizeof(T))
+    Fail(path, "", std::string("OpenMesh's ") + format + " reader failed (" + log.Messages() + ")");
+  }
+}
+
+//------------------------------------------------------------------------------
+// OBJ: OpenMesh's reader skips malformed `v` and `f` lines without a word (a
+// vertex with a bad, missing or out-of-float-range coordinate, a face with
+// fewer than 3 distinct corners, a `\` continuation) and aborts on an
+// assertion for a face corner without a vertex index (`f /1 2/1 3/1`, Debian's
+// build keeps assertions), so the `v` and `f` statements are checked here
+// first (with line numbers), and counted to catch what is still skipped.
+
+struct OBJStatements
+{
+  std::size_t Vertices = 0;
+  std::size_t Faces = 0;
+};
+
+OBJStatements CheckOBJStatements(const std::string& path, const std::string& data)
+{
+  OBJStatements counts;
+  std::size_t lineNumber = 0;
+  for (std::size_t i = 0; i < data.size();)
+  {
+    ++lineNumber;
+    std::size_t end = data.find('\n', i);
+    end = end == std::string::npos ? data.size() : end;
+    std::vector<std::string> words = SplitWords(data.substr(i, end - i));
+    i = end + 1;
+    const auto comment = std::find_if(
+      words.begin(), words.end(), [](const std::string& word) { return word[0] == '#'; });
+    words.erase(comment, words.end());
+    if (words.empty() || (words[0] != "v" && words[0] != "f"))
     {
-      this->Truncated();
+      continue;
     }
-    unsigned char bytes[sizeof(T)];
-    std::memcpy(bytes, this->Cursor, sizeof(T));
+    const std::string where = "line " + std::to_string(lineNumber);
+    if (words[0] == "v" && words.size() < 4)
+    {
+      Fail(path, where, "vertex with fewer than 3 coordinates");
+    }
+    if (words.back().back() == '\\')
+    {
+      Fail(path, where, "'\\' line continuation (OpenMesh's OBJ reader does not join lines)");
+    }
+    for (std::size_t k = 1; k < words.size() && (words[0] == "f" || k < 4); ++k)
+    {
+      const std::string& word = words[k];
+      const char* first = word.data() + (word[0] == '+');
+      const char* last = word.data() + word.size();
+      double value = 0.0;
+      int64_t index = 0;
+      if (words[0] == "v" && std::from_chars(first, last, value).ptr != last)
+      {
+        Fail(path, where, "bad vertex coordinate '" + word + "'");
+      }
+      if (words[0] == "v" && std::fabs(value) > std::numeric_limits<float>::max())
+      {
+        Fail(path, where,
+          "vertex coordinate '" + word +
+            "' beyond float range (OpenMesh's OBJ reader reads float)");
+      }
+      if (words[0] == "f" && std::from_chars(first, last, index).ptr == first)
+      {
+        Fail(path, where, "bad face corner '" + word + "'");
+      }
+      if (words[0] == "f" && index == 0)
+      {
+        Fail(path, where, "vertex index 0 (OBJ indices start at 1)");
+      }
+    }
+    ++(words[0] == "v" ? counts.Vertices : counts.Faces);
+  }
+  return counts;
+}
+
+//------------------------------------------------------------------------------
+// PLY: the header is read here to check that the file is in the part of the
+// format OpenMesh 9's PLY reader reads correctly (measured: it loops forever
+// without end_header, and reads garbage without an error from vertex elements
+// with list properties, from integer coordinates in binary files, and from
+// faces whose vertex list is not their first property or that have another
+// list), and for the `tristrips` element, which it skips and which is decoded
+// here. In ascii bodies it also reads a malformed number or a missing value as
+// 0 without an error, so ascii bodies are checked to hold numbers and exactly
+// the values the header declares.
+
+struct PLYProperty
+{
+  std::string Name;
+  std::string Type; ///< of the items for a list
+  bool IsList = false;
+  std::string CountType;
+};
+
+struct PLYElement
+{
+  std::string Name;
+  uint64_t Count = 0;
+  std::vector<PLYProperty> Properties;
+};
+
+struct PLYHeader
+{
+  std::string Format;
+  std::vector<PLYElement> Elements;
+  std::size_t BodyOffset = 0; ///< first byte after the end_header line
+  std::size_t BodyLine = 0;   ///< line number of the first body line
+};
+
+/// Size in bytes of a PLY scalar type; 0 if unknown.
+std::size_t ScalarSize(const std::string& type)
+{
+  static const std::pair<const char*, std::size_t> sizes[] = { { "char", 1 }, { "int8", 1 },
+    { "uchar", 1 }, { "uint8", 1 }, { "short", 2 }, { "int16", 2 }, { "ushort", 2 },
+    { "uint16", 2 }, { "int", 4 }, { "int32", 4 }, { "uint", 4 }, { "uint32", 4 }, { "float", 4 },
+    { "float32", 4 }, { "double", 8 }, { "float64", 8 } };
+  for (const auto& entry : sizes)
+  {
+    if (type == entry.first)
+    {
+      return entry.second;
+    }
+  }
+  return 0;
+}
+
+bool IsFloatingPoint(const std::string& type)
+{
+  return type == "float" || type == "float32" || type == "double" || type == "float64";
+}
+
+bool IsIntegral(const std::string& type)
+{
+  return ScalarSize(type) != 0 && !IsFloatingPoint(type);
+}
+
+PLYHeader ParsePLYHeader(const std::string& path, const std::string& data)
+{
+  PLYHeader header;
+  std::size_t offset = 0;
+  std::size_t lineNumber = 0;
+  while (true)
+  {
+    if (offset >= data.size())
+    {
+      Fail(path, "header", "no end_header line (OpenMesh's PLY reader would never return)");
+    }
+    ++lineNumber;
+    const std::size_t newline = data.find('\n', offset);
+    const std::size_t lineEnd = newline == std::string::npos ? data.size() : newline;
+    const std::vector<std::string> words = SplitWords(data.substr(offset, lineEnd - offset));
+    offset = newline == std::string::npos ? data.size() : newline + 1;
+    const std::string where = "header line " + std::to_string(lineNumber);
+    if (lineNumber == 1 && (words.size() != 1 || words[0] != "ply"))
+    {
+      Fail(path, where, "not a PLY file (first line is not 'ply')");
+    }
+    if (words.empty())
+    {
+      continue;
+    }
+    if (words[0] == "end_header")
+    {
+      break;
+    }
+    if (words[0] == "format")
+    {
+      if (words.size() != 3 || words[2] != "1.0")
+      {
+        Fail(path, where, "unsupported format line (expected 'format <ascii|binary_...> 1.0')");
+      }
+      header.Format = words[1];
+    }
+    else if (words[0] == "element")
+    {
+      PLYElement element;
+      uint64_t count = 0;
+      if (words.size() != 3 ||
+        std::from_chars(words[2].data(), words[2].data() + words[2].size(), count).ptr !=
+          words[2].data() + words[2].size())
+      {
+        Fail(path, where, "malformed element line");
+      }
+      element.Name = words[1];
+      element.Count = count;
+      header.Elements.push_back(element);
+    }
+    else if (words[0] == "property")
+    {
+      PLYProperty property;
+      property.IsList = words.size() == 5 && words[1] == "list";
+      if (header.Elements.empty() || (!property.IsList && words.size() != 3))
+      {
+        Fail(path, where, "malformed property line");
+      }
+      property.Name = words.back();
+      property.Type = words[words.size() - 2];
+      property.CountType = property.IsList ? words[2] : std::string();
+      if (ScalarSize(property.Type) == 0 ||
+        (property.IsList && !IsIntegral(property.CountType)))
+      {
+        Fail(path, where, "unknown property type in '" + property.Name + "'");
+      }
+      header.Elements.back().Properties.push_back(property);
+    }
+  }
+  if (header.Format != "ascii" && header.Format != "binary_little_endian" &&
+    header.Format != "binary_big_endian")
+  {
+    Fail(path, "header", "no known format line");
+  }
+  header.BodyOffset = offset;
+  header.BodyLine = lineNumber + 1;
+  return header;
+}
+
+/// Rejects what OpenMesh 9's PLY reader would misread (see above).
+void CheckOpenMeshReadsPLY(const std::string& path, const PLYHeader& header)
+{
+  bool haveVertices = false;
+  for (const PLYElement& element : header.Elements)
+  {
+    const std::string where = "element '" + element.Name + "'";
+    if (element.Name == "vertex")
+    {
+      haveVertices = true;
+      for (const PLYProperty& property : element.Properties)
+      {
+        if (property.IsList)
+        {
+          Fail(path, where,
+            "list property '" + property.Name + "' (OpenMesh's PLY reader misreads those)");
+        }
+      }
+      for (const char* axis : { "x", "y", "z" })
+      {
+        auto found = std::find_if(element.Properties.begin(), element.Properties.end(),
+          [&](const PLYProperty& property) { return property.Name == axis; });
+        if (found == element.Properties.end())
+        {
+          Fail(path, where, std::string("no '") + axis + "' property");
+        }
+        if (!IsFloatingPoint(found->Type))
+        {
+          Fail(path, where,
+            std::string("'") + axis + "' is " + found->Type +
+              " (OpenMesh's PLY reader reads float or double coordinates)");
+        }
+      }
+    }
+    else if (element.Name == "face")
+    {
+      for (std::size_t p = 0; p < element.Properties.size(); ++p)
+      {
+        const PLYProperty& property = element.Properties[p];
+        const bool indices = property.Name == "vertex_indices" || property.Name == "vertex_index";
+        if ((p == 0) != (indices && property.IsList) || (p > 0 && property.IsList))
+        {
+          Fail(path, where,
+            "OpenMesh's PLY reader reads faces whose first property is the vertex_indices list "
+            "and whose other properties are scalars");
+        }
+        if (indices && !IsIntegral(property.Type))
+        {
+          Fail(path, where, "property '" + property.Name + "' must be a list of integers");
+        }
+      }
+    }
+  }
+  if (!haveVertices)
+  {
+    Fail(path, "header", "no 'vertex' element");
+  }
+}
+
+/// The body of a PLY file as a sequence of integer reads: bytes of a binary
+/// body, numbers of an ascii body (tokenised and checked to be numbers once).
+class PLYBody
+{
+public:
+  PLYBody(const std::string& path, const std::string& data, const PLYHeader& header)
+    : Data(data)
+    , Offset(header.BodyOffset)
+    , Ascii(header.Format == "ascii")
+  {
+    this->Swap = (header.Format == "binary_big_endian") == HostIsLittleEndian();
+    if (!this->Ascii)
+    {
+      return;
+    }
+    std::size_t line = header.BodyLine;
+    for (std::size_t i = header.BodyOffset; i < data.size();)
+    {
+      if (IsBlank(data[i]) || data[i] == '\n')
+      {
+        line += data[i++] == '\n';
+        continue;
+      }
+      const std::size_t start = i;
+      while (i < data.size() && !IsBlank(data[i]) && data[i] != '\n')
+      {
+        ++i;
+      }
+      const char* first = data.data() + start + (data[start] == '+');
+      double value;
+      if (std::from_chars(first, data.data() + i, value).ptr != data.data() + i)
+      {
+        Fail(path, "line " + std::to_string(line),
+          "number expected, got '" + data.substr(start, i - start) + "'");
+      }
+      if (std::fabs(value) > std::numeric_limits<float>::max())
+      {
+        // OpenMesh reads with `>> float`, which fails there and reads 0s after.
+        Fail(path, "line " + std::to_string(line),
+          "'" + data.substr(start, i - start) +
+            "' is beyond float range (OpenMesh's PLY reader reads float)");
+      }
+      this->Tokens.emplace_back(start, i);
+    }
+  }
+
+  /// Numbers (ascii) or bytes (binary) in the body.
+  uint64_t Size() const
+  {
+    return this->Ascii ? this->Tokens.size() : this->Data.size() - this->Offset;
+  }
+
+  /// Units one value of `type` takes.
+  uint64_t Units(const std::string& type) const { return this->Ascii ? 1 : ScalarSize(type); }
+
+  /// Reads the integer of `type` at `position` and advances it; false at the end.
+  bool ReadInt(const std::string& type, uint64_t& position, int64_t& value) const
+  {
+    if (position + this->Units(type) > this->Size())
+    {
+      return false;
+    }
+    if (this->Ascii)
+    {
+      const auto [start, end] = this->Tokens[static_cast<std::size_t>(position++)];
+      const char* first = this->Data.data() + start + (this->Data[start] == '+');
+      if (std::from_chars(first, this->Data.data() + end, value).ptr != this->Data.data() + end)
+      {
+        value = std::numeric_limits<int64_t>::min(); // not an integer: out of any range
+      }
+      return true;
+    }
+    const std::size_t size = ScalarSize(type);
+    unsigned char bytes[4] = { 0, 0, 0, 0 };
+    std::memcpy(bytes, this->Data.data() + this->Offset + position, size);
+    position += size;
     if (this->Swap)
     {
-      std::reverse(bytes, bytes + sizeof(T));
+      std::reverse(bytes, bytes + size);
     }
-    this->Cursor += sizeof(T);
-    T value;
-    std::memcpy(&value, bytes, sizeof(T));
-    return value;
-  }
-
-  [[noreturn]] void Truncated() const
-  {
-    Fail(*this->Context.Path, this->Context.Where(),
-      "unexpected end of file (truncated binary data; header declares " +
-        std::to_string(this->Context.Element->Count) + " '" + this->Context.Element->Name +
-        "' elements)");
-  }
-
-  const unsigned char* Cursor;
-  const unsigned char* End;
-  bool Swap;
-  PLYContext& Context;
-};
-
-class PLYAsciiReader
-{
-public:
-  PLYAsciiReader(const std::string& data, std::size_t offset, std::size_t line, PLYContext& context)
-    : Cursor(data.data() + offset)
-    , End(data.data() + data.size())
-    , Line(line)
-    , Context(context)
-  {
-  }
-
-  double ReadDouble(ScalarType)
-  {
-    this->NextToken();
-    double value;
-    if (!ParseDouble(this->First, this->Last, value))
+    const bool isSigned = type == "char" || type == "int8" || type == "short" ||
+      type == "int16" || type == "int" || type == "int32";
+    if (size == 1)
     {
-      this->Bad("number");
+      value = isSigned ? int64_t(int8_t(bytes[0])) : int64_t(bytes[0]);
     }
-    return value;
-  }
-
-  int64_t ReadInt(ScalarType type)
-  {
-    this->NextToken();
-    int64_t value;
-    if (!IsIntegral(type) || !ParseInt(this->First, this->Last, value))
+    else if (size == 2)
     {
-      this->Bad("integer");
+      uint16_t raw;
+      std::memcpy(&raw, bytes, 2);
+      value = isSigned ? int64_t(int16_t(raw)) : int64_t(raw);
     }
-    return value;
-  }
-
-  void Skip(ScalarType, uint64_t count = 1)
-  {
-    for (uint64_t i = 0; i < count; ++i)
+    else
     {
-      this->NextToken();
+      uint32_t raw;
+      std::memcpy(&raw, bytes, 4);
+      value = isSigned ? int64_t(int32_t(raw)) : int64_t(raw);
     }
+    return true;
   }
 
 private:
-  void NextToken()
-  {
-    while (this->Cursor < this->End && (IsBlank(*this->Cursor) || *this->Cursor == '\n'))
-    {
-      if (*this->Cursor == '\n')
-      {
-        ++this->Line;
-      }
-      ++this->Cursor;
-    }
-    if (this->Cursor == this->End)
-    {
-      Fail(*this->Context.Path, this->Context.Where(LineWhere(this->Line)),
-        "unexpected end of file (header declares " + std::to_string(this->Context.Element->Count) +
-          " '" + this->Context.Element->Name + "' elements)");
-    }
-    this->First = this->Cursor;
-    while (this->Cursor < this->End && !IsBlank(*this->Cursor) && *this->Cursor != '\n')
-    {
-      ++this->Cursor;
-    }
-    this->Last = this->Cursor;
-  }
-
-  [[noreturn]] void Bad(const char* expected) const
-  {
-    Fail(*this->Context.Path, this->Context.Where(LineWhere(this->Line)),
-      std::string(expected) + " expected, got '" + std::string(this->First, this->Last) + "'");
-  }
-
-  const char* Cursor;
-  const char* End;
-  const char* First = nullptr;
-  const char* Last = nullptr;
-  std::size_t Line;
-  PLYContext& Context;
+  const std::string& Data;
+  std::size_t Offset;
+  bool Ascii;
+  bool Swap = false;
+  std::vector<std::pair<std::size_t, std::size_t>> Tokens; ///< [start, end) of each number
 };
 
 // Append the triangles of one strip (entries of `strip`; -1 restarts).
@@ -711,8 +765,10 @@ void DecodeStrip(const std::vector<int64_t>& strip, uint64_t vertexCount,
     }
     if (id < 0 || static_cast<uint64_t>(id) >= vertexCount)
     {
-      fail("strip vertex index " + std::to_string(id) + " out of range [0, " +
-        std::to_string(vertexCount) + ")");
+      fail("strip vertex index " +
+        (id == std::numeric_limits<int64_t>::min() ? std::string("not an integer")
+                                                   : std::to_string(id)) +
+        " out of range [0, " + std::to_string(vertexCount) + ")");
     }
     const std::size_t position = k - runStart;
     if (position < 2)
@@ -736,194 +792,89 @@ void DecodeStrip(const std::vector<int64_t>& strip, uint64_t vertexCount,
   }
 }
 
-template <class Reader>
-void ReadPLYBody(const std::string& path, const PLYHeader& header, Reader& reader,
-  PLYContext& context, TriangleMesh& mesh)
+/**
+ * Walks the body element by element: decodes `tristrips` (OpenMesh skips
+ * them) into mesh.Triangles, and returns where the body should end (numbers
+ * for ascii, bytes for binary) from the header and the face corners OpenMesh
+ * reported, or -1 when an element of unknown layout (a list in an element
+ * other than face and tristrips) makes that unknowable.
+ */
+int64_t DecodeStripsAndMeasureBody(const std::string& path, const PLYHeader& header,
+  const PLYBody& body, std::size_t faceCorners, TriangleMesh& mesh)
 {
   uint64_t vertexCount = 0;
-  bool haveVertices = false;
   for (const PLYElement& element : header.Elements)
   {
-    if (element.Name == "vertex")
+    vertexCount = element.Name == "vertex" ? element.Count : vertexCount;
+  }
+  uint64_t position = 0;
+  std::vector<int64_t> strip;
+  for (const PLYElement& element : header.Elements)
+  {
+    if (element.Name == "tristrips")
     {
-      vertexCount = element.Count;
-      haveVertices = true;
+      if (element.Properties.size() != 1 || !element.Properties[0].IsList ||
+        element.Properties[0].Name != "vertex_indices" ||
+        !IsIntegral(element.Properties[0].Type))
+      {
+        Fail(path, "element 'tristrips'", "expected one property: a vertex_indices integer list");
+      }
+      const PLYProperty& list = element.Properties[0];
+      for (uint64_t i = 0; i < element.Count; ++i)
+      {
+        const std::string where = "element 'tristrips' #" + std::to_string(i);
+        int64_t count = 0;
+        if (!body.ReadInt(list.CountType, position, count))
+        {
+          Fail(path, where, "unexpected end of file");
+        }
+        if (count < 0)
+        {
+          Fail(path, where, "negative list count " + std::to_string(count));
+        }
+        if (static_cast<uint64_t>(count) > body.Size())
+        {
+          Fail(path, where, "unexpected end of file");
+        }
+        strip.resize(static_cast<std::size_t>(count));
+        for (int64_t& id : strip)
+        {
+          if (!body.ReadInt(list.Type, position, id))
+          {
+            Fail(path, where, "unexpected end of file");
+          }
+        }
+        DecodeStrip(strip, vertexCount, mesh.Triangles,
+          [&](const std::string& what) { Fail(path, where, what); });
+      }
+      continue;
+    }
+    uint64_t rowUnits = 0;
+    for (const PLYProperty& property : element.Properties)
+    {
+      if (property.IsList && element.Name != "face")
+      {
+        // Unknown layout: the strips must come before this element.
+        for (auto later = &element; later != header.Elements.data() + header.Elements.size();
+             ++later)
+        {
+          if (later->Name == "tristrips")
+          {
+            Fail(path, "element 'tristrips'",
+              "comes after element '" + element.Name + "' with a list property");
+          }
+        }
+        return -1;
+      }
+      rowUnits += property.IsList ? body.Units(property.CountType) : body.Units(property.Type);
+    }
+    position += element.Count * rowUnits;
+    if (element.Name == "face" && !element.Properties.empty())
+    {
+      position += faceCorners * body.Units(element.Properties[0].Type);
     }
   }
-  if (!haveVertices)
-  {
-    Fail(path, "header", "no 'vertex' element");
-  }
-  if (vertexCount > MaxPointId)
-  {
-    Fail(path, "header", "more than 2^32-1 vertices");
-  }
-
-  // Validate the layout of every element before reading any data.
-  enum class Kind
-  {
-    Vertex,
-    Face,
-    Strips,
-    Other
-  };
-  struct Plan
-  {
-    Kind ElementKind = Kind::Other;
-    // Role of each property: 0..2 = x, y, z; 3 = index list; -1 = skipped.
-    std::vector<int> Role;
-  };
-  std::vector<Plan> plans(header.Elements.size());
-  for (std::size_t e = 0; e < header.Elements.size(); ++e)
-  {
-    const PLYElement& element = header.Elements[e];
-    const std::string headerWhere = "header line " + std::to_string(element.HeaderLine);
-    const std::size_t propertyCount = element.Properties.size();
-    std::vector<int>& role = plans[e].Role;
-    role.assign(propertyCount, -1);
-    Kind& kind = plans[e].ElementKind;
-    if (element.Name == "vertex")
-    {
-      kind = Kind::Vertex;
-      const char* axes[3] = { "x", "y", "z" };
-      for (int axis = 0; axis < 3; ++axis)
-      {
-        bool found = false;
-        for (std::size_t p = 0; p < propertyCount; ++p)
-        {
-          if (element.Properties[p].Name == axes[axis])
-          {
-            if (element.Properties[p].IsList)
-            {
-              Fail(
-                path, headerWhere, std::string("vertex property '") + axes[axis] + "' is a list");
-            }
-            role[p] = axis;
-            found = true;
-            break;
-          }
-        }
-        if (!found)
-        {
-          Fail(
-            path, headerWhere, std::string("vertex element has no '") + axes[axis] + "' property");
-        }
-      }
-    }
-    else if (element.Name == "face" || element.Name == "tristrips")
-    {
-      kind = element.Name == "face" ? Kind::Face : Kind::Strips;
-      bool found = false;
-      for (std::size_t p = 0; p < propertyCount && !found; ++p)
-      {
-        const PLYProperty& property = element.Properties[p];
-        if (property.Name == "vertex_indices" ||
-          (kind == Kind::Face && property.Name == "vertex_index"))
-        {
-          if (!property.IsList || !IsIntegral(property.Type))
-          {
-            Fail(path, headerWhere, "property '" + property.Name + "' must be a list of integers");
-          }
-          role[p] = 3;
-          found = true;
-        }
-      }
-      if (!found)
-      {
-        Fail(
-          path, headerWhere, "element '" + element.Name + "' has no vertex_indices list property");
-      }
-    }
-  }
-
-  std::vector<int64_t> list;
-  std::vector<uint32_t> polygon;
-  for (std::size_t e = 0; e < header.Elements.size(); ++e)
-  {
-    const PLYElement& element = header.Elements[e];
-    const std::vector<int>& role = plans[e].Role;
-    const Kind kind = plans[e].ElementKind;
-    const std::size_t propertyCount = element.Properties.size();
-    context.Element = &element;
-    context.Index = 0;
-    if (kind == Kind::Vertex)
-    {
-      // Capped: a corrupt header must not trigger a huge allocation.
-      mesh.Points.reserve(
-        static_cast<std::size_t>(3 * std::min<uint64_t>(element.Count, 1u << 24)));
-    }
-    else if (kind == Kind::Face)
-    {
-      mesh.Triangles.reserve(mesh.Triangles.size() +
-        static_cast<std::size_t>(3 * std::min<uint64_t>(element.Count, 1u << 24)));
-    }
-
-    for (uint64_t i = 0; i < element.Count; ++i)
-    {
-      context.Index = i;
-      double xyz[3] = { 0.0, 0.0, 0.0 };
-      for (std::size_t p = 0; p < propertyCount; ++p)
-      {
-        const PLYProperty& property = element.Properties[p];
-        const int r = role[p];
-        if (property.IsList)
-        {
-          const int64_t count = reader.ReadInt(property.CountType);
-          if (count < 0)
-          {
-            Fail(path, context.Where(), "negative list count " + std::to_string(count));
-          }
-          if (r != 3)
-          {
-            reader.Skip(property.Type, static_cast<uint64_t>(count));
-            continue;
-          }
-          list.resize(static_cast<std::size_t>(count));
-          for (int64_t k = 0; k < count; ++k)
-          {
-            list[static_cast<std::size_t>(k)] = reader.ReadInt(property.Type);
-          }
-          if (kind == Kind::Face)
-          {
-            if (count < 3)
-            {
-              Fail(path, context.Where(),
-                "face with " + std::to_string(count) + " vertices (at least 3 needed)");
-            }
-            polygon.clear();
-            for (const int64_t id : list)
-            {
-              if (id < 0 || static_cast<uint64_t>(id) >= vertexCount)
-              {
-                Fail(path, context.Where(),
-                  "vertex index " + std::to_string(id) + " out of range [0, " +
-                    std::to_string(vertexCount) + ")");
-              }
-              polygon.push_back(static_cast<uint32_t>(id));
-            }
-            FanTriangulate(polygon, mesh.Triangles);
-          }
-          else
-          {
-            DecodeStrip(list, vertexCount, mesh.Triangles,
-              [&](const std::string& what) { Fail(path, context.Where(), what); });
-          }
-        }
-        else if (r >= 0 && r < 3)
-        {
-          xyz[r] = reader.ReadDouble(property.Type);
-        }
-        else
-        {
-          reader.Skip(property.Type);
-        }
-      }
-      if (kind == Kind::Vertex)
-      {
-        mesh.Points.insert(mesh.Points.end(), xyz, xyz + 3);
-      }
-    }
-  }
+  return static_cast<int64_t>(position);
 }
 
 //------------------------------------------------------------------------------
@@ -1065,74 +1016,30 @@ TriangleMesh LoadMesh(const std::string& path)
 TriangleMesh LoadOBJ(const std::string& path)
 {
   const std::string data = ReadWholeFile(path);
+  const OBJStatements statements = CheckOBJStatements(path, data);
+  const std::size_t vertexLines = statements.Vertices;
+  const std::size_t faceLines = statements.Faces;
   TriangleMesh mesh;
-  // Rough preallocation: ~30 bytes per vertex line, ~2 faces per vertex.
-  mesh.Points.reserve(data.size() / 30);
-  mesh.Triangles.reserve(data.size() / 15);
-
-  std::vector<uint32_t> polygon;
-  std::string joined;
-  uint64_t maxPositive = 0;
-  std::size_t maxPositiveLine = 0;
-  std::size_t lineNumber = 0;
-  const char* p = data.data();
-  const char* const end = p + data.size();
-  while (p < end)
+  ArrayImporter importer(mesh, true);
+  ReadWithOpenMesh(path, data, "OBJ", importer);
+  if (mesh.NumberOfPoints() != vertexLines)
   {
-    auto takeLine = [&](const char*& first, const char*& last)
-    {
-      ++lineNumber;
-      first = p;
-      const void* newline = std::memchr(p, '\n', static_cast<std::size_t>(end - p));
-      last = newline ? static_cast<const char*>(newline) : end;
-      p = newline ? last + 1 : end;
-      const char* comment =
-        static_cast<const char*>(std::memchr(first, '#', static_cast<std::size_t>(last - first)));
-      if (comment)
-      {
-        last = comment;
-      }
-      while (last > first && IsBlank(last[-1]))
-      {
-        --last;
-      }
-    };
-    const char* first;
-    const char* last;
-    takeLine(first, last);
-    const std::size_t statementLine = lineNumber;
-    if (last > first && last[-1] == '\\')
-    {
-      // Line continuation: join with the following lines.
-      joined.assign(first, last - 1);
-      while (p < end)
-      {
-        takeLine(first, last);
-        const bool more = last > first && last[-1] == '\\';
-        joined.push_back(' ');
-        joined.append(first, more ? last - 1 : last);
-        if (!more)
-        {
-          break;
-        }
-      }
-      ParseOBJLine(path, statementLine, joined.data(), joined.data() + joined.size(), mesh, polygon,
-        maxPositive, maxPositiveLine);
-    }
-    else
-    {
-      ParseOBJLine(path, statementLine, first, last, mesh, polygon, maxPositive, maxPositiveLine);
-    }
+    Fail(path, "",
+      "OpenMesh's OBJ reader accepted " + std::to_string(mesh.NumberOfPoints()) + " of the " +
+        std::to_string(vertexLines) +
+        " 'v' lines");
   }
-  const uint64_t vertexCount = mesh.Points.size() / 3;
-  if (maxPositiveLine != 0 && maxPositive >= vertexCount)
+  if (!importer.Error.empty())
   {
-    Fail(path, LineWhere(maxPositiveLine),
-      "vertex index " + std::to_string(maxPositive + 1) + " out of range (file has " +
-        std::to_string(vertexCount) + " vertices)");
+    Fail(path, "", importer.Error);
   }
-  mesh.Points.shrink_to_fit();
-  mesh.Triangles.shrink_to_fit();
+  if (importer.Faces != faceLines)
+  {
+    Fail(path, "",
+      "OpenMesh's OBJ reader accepted " + std::to_string(importer.Faces) + " of the " +
+        std::to_string(faceLines) +
+        " 'f' lines (it skips a face with fewer than 3 distinct vertices)");
+  }
   return mesh;
 }
 
@@ -1141,21 +1048,62 @@ TriangleMesh LoadPLY(const std::string& path)
 {
   const std::string data = ReadWholeFile(path);
   const PLYHeader header = ParsePLYHeader(path, data);
+  CheckOpenMeshReadsPLY(path, header);
+  const PLYBody body(path, data, header); // checks that an ascii body holds numbers
+  // OpenMesh's ascii reader goes on past the end of the data (reading 0s), so
+  // a header declaring more than the file holds would make it loop that long.
+  uint64_t least = 0;
+  for (const PLYElement& element : header.Elements)
+  {
+    uint64_t row = 0;
+    for (const PLYProperty& property : element.Properties)
+    {
+      row += body.Units(property.IsList ? property.CountType : property.Type);
+    }
+    least += std::min<uint64_t>(element.Count, body.Size() + 1) * row;
+    if (least > body.Size())
+    {
+      Fail(path, "element '" + element.Name + "'",
+        "unexpected end of file (the header declares " + std::to_string(element.Count) +
+          " of them)");
+    }
+  }
   TriangleMesh mesh;
-  PLYContext context;
-  context.Path = &path;
-  if (header.Format == PLYFormat::Ascii)
+  ArrayImporter importer(mesh, false);
+  ReadWithOpenMesh(path, data, "PLY", importer);
+  if (!importer.Error.empty())
   {
-    PLYAsciiReader reader(data, header.BodyOffset, header.BodyLine, context);
-    ReadPLYBody(path, header, reader, context, mesh);
+    Fail(path, "", importer.Error);
   }
-  else
+  uint64_t faceCount = 0;
+  for (const PLYElement& element : header.Elements)
   {
-    PLYBinaryReader reader(
-      data, header.BodyOffset, header.Format == PLYFormat::BinaryBigEndian, context);
-    ReadPLYBody(path, header, reader, context, mesh);
+    if (element.Name == "vertex" && element.Count != mesh.NumberOfPoints())
+    {
+      Fail(path, "element 'vertex'",
+        "OpenMesh's PLY reader returned " + std::to_string(mesh.NumberOfPoints()) + " of " +
+          std::to_string(element.Count) + " vertices");
+    }
+    faceCount += element.Name == "face" ? element.Count : 0;
   }
-  mesh.Triangles.shrink_to_fit();
+  if (importer.Faces != faceCount)
+  {
+    Fail(path, "element 'face'",
+      "OpenMesh's PLY reader returned " + std::to_string(importer.Faces) + " of " +
+        std::to_string(faceCount) + " faces");
+  }
+  // The strips (by hand: OpenMesh skips them) and the length of the body.
+  const int64_t end = DecodeStripsAndMeasureBody(path, header, body, importer.Corners, mesh);
+  if (end >= 0 && static_cast<uint64_t>(end) > body.Size())
+  {
+    Fail(path, "", "unexpected end of file (the header declares more data)");
+  }
+  if (end >= 0 && header.Format == "ascii" && static_cast<uint64_t>(end) != body.Size())
+  {
+    Fail(path, "",
+      "the body holds " + std::to_string(body.Size()) + " numbers, the header declares " +
+        std::to_string(end) + " (a list longer than its count?)");
+  }
   return mesh;
 }
 

@@ -6,20 +6,46 @@
  * VTK-free triangle mesh loading, welding, checking and generation for the
  * GoogleTest tests and C++ benchmarks of the algorithm cores.
  *
- * LoadMesh() reads Wavefront OBJ and PLY (ascii, binary little/big endian,
- * `face` polygon lists and `tristrips` triangle strips, which vtkPLYReader
- * cannot decode). Errors throw std::runtime_error naming the file and the
- * line (OBJ, ascii PLY header/body) or element (binary PLY).
+ * LoadMesh() reads Wavefront OBJ and PLY through OpenMesh's readers (issue 10,
+ * item 4): an OpenMesh::IO::BaseImporter collects the points and faces into
+ * plain arrays (no halfedge mesh, so non-manifold input, duplicate and unused
+ * points stay exactly as in the file; polygons are fan-triangulated).
  *
- * The readers and writers are hand-written on purpose (issue 10, item 4,
- * measured with libopenmesh-dev 9.0): OpenMesh's IO is single precision (its
- * importer takes positions as Vec3f, its OBJ reader parses floats, its PLY
- * writer writes float properties), so every OBJ coordinate and every double
- * PLY would change in its last bits, and with them the figures measured on
- * the shared meshes; its PLY reader also skips `tristrips` (igea). VTK's
- * readers are not an option in these VTK-free cores (and vtkPLYReader does
- * not decode strips either). Testing/Core/TestMeshIOLoaders.cxx pins the
- * loaded meshes by fingerprints and checks both facts against OpenMesh.
+ * Precision: OpenMesh 9's readers are single precision (measured with
+ * libopenmesh-dev 9.0: its OBJ reader parses floats and calls
+ * add_vertex(Vec3f), its PLY reader calls set_point(Vec3f) even for double
+ * properties), so every loaded coordinate is a float: an OBJ coordinate is
+ * the file's decimal rounded to float (on the shared OBJ meshes 90-99.99% of
+ * the coordinates differ from the double parse, by at most 5.9e-8 relative),
+ * igea's float coordinates are unchanged. A coordinate beyond float range is
+ * an error. Testing/Core/TestMeshIOLoaders.cxx pins the loaded meshes
+ * (counts, bounding boxes, coordinate and triangle hashes) and these facts.
+ *
+ * By hand, because OpenMesh lacks it:
+ * - PLY `tristrips` (igea.ply): OpenMesh's PLY reader skips the element; the
+ *   loader finds it from the header and decodes it (a -1 entry restarts the
+ *   strip, winding alternates, degenerate joins are dropped). Its triangles
+ *   follow those of a `face` element. vtkPLYReader cannot decode strips either.
+ * - Checks of what OpenMesh accepts silently or crashes on (measured):
+ *   out-of-range face indices (passed through: checked in the importer); OBJ
+ *   `v` and `f` lines it skips (a malformed or out-of-float-range coordinate,
+ *   a `\` continuation: the lines are checked, with line numbers; a face
+ *   with fewer than 3 distinct vertices: the lines are counted) or aborts on
+ *   (an assertion for a corner without a vertex index: checked); a PLY header
+ *   without end_header (its reader never returns); PLY layouts it misreads
+ *   into garbage (a list property in the vertex element, integer
+ *   coordinates, a face element whose first property is not the vertex list
+ *   or that has another list: rejected); malformed or missing numbers in an
+ *   ascii PLY body (read as 0: the body is checked to hold exactly the
+ *   numbers the header declares) and a header declaring more elements than
+ *   the file holds (its ascii reader would read that many zeros). Errors
+ *   throw std::runtime_error naming the file and what is wrong (OpenMesh's
+ *   own messages quoted when its reader fails).
+ *
+ * SaveOBJ and SavePLY stay hand-written (about 90 lines of printf): OpenMesh's
+ * writers need a BaseExporter of some 50 methods or a copy into a halfedge
+ * mesh (which splits the cow's pinch vertex), and its PLY writer writes float
+ * properties where SavePLY writes the doubles exactly.
  *
  * The real meshes of the project live outside the repository in the shared
  * data folder (see ../shared/data/README.md); FindSharedMesh() says whether
@@ -80,24 +106,29 @@ SharedMesh FindSharedMesh(const std::string& name);
 TriangleMesh LoadMesh(const std::string& path);
 
 /**
- * Wavefront OBJ: `v x y z [w ...]` and `f` lines with `v`, `v/vt`, `v//vn` or
- * `v/vt/vn` corners, 1-based or negative (relative to the vertices read so
- * far) position indices, `\` line continuation. Other statements (vt, vn, g,
- * o, s, usemtl, l, p, ...) and `#` comments are ignored.
+ * Wavefront OBJ, read by OpenMesh: `v x y z [w ...]` and `f` lines with `v`,
+ * `v/vt`, `v//vn` or `v/vt/vn` corners, 1-based or negative (relative to the
+ * vertices read so far) position indices; repeated corners of a face are
+ * merged by OpenMesh. Other statements (vt, vn, g, o, s, usemtl, l, p, ...)
+ * and `#` comments are ignored; `\` line continuations are not supported
+ * (an error).
  */
 TriangleMesh LoadOBJ(const std::string& path);
 
 /**
- * PLY (ascii, binary_little_endian, binary_big_endian): `vertex` x, y, z of
- * any scalar type (other properties skipped); `face` lists named
- * vertex_indices or vertex_index (any count/index types; fan-triangulated);
- * `tristrips` lists named vertex_indices (a -1 entry restarts the strip;
- * winding alternates along a strip; degenerate triangles are dropped).
- * Other elements and properties are skipped.
+ * PLY (ascii, binary_little_endian, binary_big_endian), read by OpenMesh:
+ * `vertex` x, y, z of type float or double (other scalar properties skipped);
+ * `face` with a first property `list <uchar|uint8|int> <int|uint|...>
+ * vertex_indices` (or vertex_index) and scalar properties after it
+ * (fan-triangulated); decoded here: `tristrips` with one property, a list of
+ * integers named vertex_indices (a -1 entry restarts the strip; winding
+ * alternates along a strip; degenerate triangles are dropped). Other
+ * elements are skipped.
  */
 TriangleMesh LoadPLY(const std::string& path);
 
-/// Write `v` and `f` lines (17 significant digits, exact round trip).
+/// Write `v` and `f` lines (17 significant digits: the exact doubles; LoadMesh
+/// reads them back rounded to float).
 void SaveOBJ(const TriangleMesh& mesh, const std::string& path);
 
 /// Write a PLY with double x, y, z and `property list uchar int vertex_indices`
