@@ -22,6 +22,7 @@
 #include <vtkDataArray.h>
 #include <vtkImageData.h>
 #include <vtkNew.h>
+#include <vtkOBJReader.h>
 #include <vtkPNGWriter.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
@@ -433,12 +434,24 @@ inline CowTOM MakeCowTOM(const std::string& dataDirectory)
 {
   CowTOM object;
   const std::filesystem::path cow = std::filesystem::path(dataDirectory) / "cow.obj";
-  timecritical::testing::TriangleMesh mesh;
+  auto input = vtkSmartPointer<vtkPolyData>::New();
   if (std::filesystem::is_regular_file(cow))
   {
     object.Source = cow.string();
-    mesh = timecritical::testing::RemoveUnusedPoints(
-      timecritical::testing::WeldPoints(timecritical::testing::LoadMesh(cow.string())));
+    // VTK's reader: double coordinates (as in the file), one point per `v`
+    // line and the triangles in file order. cow.obj has no texture
+    // coordinates and no duplicate or unused points (checked when this moved
+    // from TestMeshIO's loaders, which now read float through OpenMesh), so
+    // nothing needs welding; the reader's GroupIds cell array is left out.
+    vtkNew<vtkOBJReader> reader;
+    reader->SetFileName(cow.string().c_str());
+    reader->Update();
+    if (reader->GetOutput()->GetNumberOfPolys() == 0)
+    {
+      throw std::runtime_error("vtkOBJReader read no triangles from " + cow.string());
+    }
+    input->SetPoints(reader->GetOutput()->GetPoints());
+    input->SetPolys(reader->GetOutput()->GetPolys());
   }
   else
   {
@@ -446,11 +459,11 @@ inline CowTOM MakeCowTOM(const std::string& dataDirectory)
     object.Source = "substitute: bumpy ellipsoid of 5,848 triangles (" + cow.string() + " not found)";
     std::cerr << "WARNING: " << cow.string()
               << " not found: the scene uses a cow-sized substitute (a bumpy ellipsoid)\n";
-    mesh = MakeSubstituteCow();
+    input = ToPolyData(MakeSubstituteCow());
   }
 
   vtkNew<vtkTOMBuilder> builder;
-  builder->SetInputData(WithNormals(ToPolyData(mesh)));
+  builder->SetInputData(WithNormals(input));
   builder->Update();
   object.TOM = builder->GetOutput();
   object.BuildSeconds = builder->GetBuildTime();
