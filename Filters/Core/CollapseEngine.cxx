@@ -473,11 +473,16 @@ void CollapseEngine::BuildFaceQuadrics()
     normal[2] = static_cast<float>(unit.Z);
     normal += 3;
     const double area = 0.5 * len;
+    const PlaneThroughOrigin plane(unit, area);
     for (uint32_t v : tri.V)
     {
-      AddPlaneThroughOrigin(this->Quadrics[v], unit, area);
+      plane.AddTo(this->Quadrics[v]);
       this->Quadrics[v].FaceWeight = static_cast<float>(this->Quadrics[v].FaceWeight + area);
     }
+  }
+  for (QuadricRecord& r : this->Quadrics)
+  {
+    SetFaceWeight(r, r.FaceWeight);
   }
 }
 
@@ -497,10 +502,11 @@ void CollapseEngine::AddConstraintPlane(uint32_t a, uint32_t b, const Vec3& face
   const double w = weight * Dot(e, e);
   Quadric q;
   q.AddPlane(m, -Dot(m, this->Vertices[a].P), w);
+  const PlaneThroughOrigin plane(m, w);
   for (uint32_t v : { a, b })
   {
     QuadricRecord& rec = this->Quadrics[v];
-    AddPlaneThroughOrigin(rec, m, w);
+    plane.AddTo(rec);
     if (rec.Slot == Invalid)
     {
       rec.Slot = static_cast<uint32_t>(this->Constraints.size());
@@ -982,7 +988,7 @@ void CollapseEngine::SetBest(uint32_t v, const Candidate& best)
 }
 
 //------------------------------------------------------------------------------
-void CollapseEngine::Reevaluate(uint32_t v)
+void CollapseEngine::Reevaluate(uint32_t v, bool prefetch)
 {
   if (this->Parked(v))
   {
@@ -990,7 +996,7 @@ void CollapseEngine::Reevaluate(uint32_t v)
     return;
   }
   Candidate best;
-  this->BestTarget(v, best);
+  this->BestTarget(v, best, prefetch);
   this->SetBest(v, best);
 }
 
@@ -1366,7 +1372,7 @@ void CollapseEngine::ApplyCollapse(uint32_t u, uint32_t w)
   QuadricRecord& qu = this->Quadrics[u];
   QuadricRecord& qw = this->Quadrics[w];
   LocalQuadric(qu, ru.P).AddTo(qw, rw.P);
-  qw.FaceWeight += qu.FaceWeight;
+  SetFaceWeight(qw, qw.FaceWeight + qu.FaceWeight);
   if (qu.Slot != Invalid)
   {
     if (qw.Slot == Invalid)
@@ -1490,7 +1496,7 @@ void CollapseEngine::ApplyCollapse(uint32_t u, uint32_t w)
     {
       if (!(rx.State & RemovedBit))
       {
-        this->Reevaluate(x);
+        this->Reevaluate(x, false);
       }
       continue;
     }
@@ -1501,7 +1507,7 @@ void CollapseEngine::ApplyCollapse(uint32_t u, uint32_t w)
     }
     if (kind == KindCurve)
     {
-      this->Reevaluate(x); // its targets depend on the constraint edges
+      this->Reevaluate(x, false); // its targets depend on the constraint edges
       continue;
     }
     const double c = this->Cost(this->QuadricOf(x), w);
@@ -1512,7 +1518,7 @@ void CollapseEngine::ApplyCollapse(uint32_t u, uint32_t w)
     }
     else if (rx.Target == u)
     {
-      this->Reevaluate(x);
+      this->Reevaluate(x, false);
     }
   }
   for (uint32_t x : this->Retry)

@@ -371,8 +371,18 @@ struct alignas(64) QuadricRecord
   float C;
   float FaceWeight; // total area behind the face planes
   uint32_t Slot;    // index into the constraint records, Invalid when none
+  double InverseRootWeight; // 1 / sqrt(FaceWeight), see SetFaceWeight
 };
 static_assert(sizeof(QuadricRecord) == 64, "one cache line per quadric");
+
+/// Sets the face weight of r and its inverse square root, which every cost
+/// evaluation reads (CollapseEngine::Cost): computed once per change, not per
+/// evaluation.
+inline void SetFaceWeight(QuadricRecord& r, float weight)
+{
+  r.FaceWeight = weight;
+  r.InverseRootWeight = 1.0 / std::sqrt(double(std::max(weight, std::numeric_limits<float>::min())));
+}
 
 /// A QuadricRecord in double precision, for evaluation and merging.
 struct LocalQuadric
@@ -395,7 +405,7 @@ struct LocalQuadric
     , C(r.C)
     , Origin(origin)
     , Weight(r.FaceWeight)
-    , InverseRootWeight(1.0 / std::sqrt(double(std::max(r.FaceWeight, std::numeric_limits<float>::min()))))
+    , InverseRootWeight(r.InverseRootWeight)
   {
   }
   /// A d, for an offset d from the origin.
@@ -431,16 +441,31 @@ struct LocalQuadric
   }
 };
 
-/// Adds weight * n n^T (a plane through the record's own vertex, n of unit length).
-inline void AddPlaneThroughOrigin(QuadricRecord& r, const Vec3& n, double weight)
+/// weight * n n^T, a plane through a record's own vertex (n of unit length),
+/// computed once for all the vertices it is added to.
+struct PlaneThroughOrigin
 {
-  r.A00 = static_cast<float>(r.A00 + weight * n.X * n.X);
-  r.A01 = static_cast<float>(r.A01 + weight * n.X * n.Y);
-  r.A02 = static_cast<float>(r.A02 + weight * n.X * n.Z);
-  r.A11 = static_cast<float>(r.A11 + weight * n.Y * n.Y);
-  r.A12 = static_cast<float>(r.A12 + weight * n.Y * n.Z);
-  r.A22 = static_cast<float>(r.A22 + weight * n.Z * n.Z);
-}
+  double A00, A01, A02, A11, A12, A22;
+
+  PlaneThroughOrigin(const Vec3& n, double weight)
+    : A00(weight * n.X * n.X)
+    , A01(weight * n.X * n.Y)
+    , A02(weight * n.X * n.Z)
+    , A11(weight * n.Y * n.Y)
+    , A12(weight * n.Y * n.Z)
+    , A22(weight * n.Z * n.Z)
+  {
+  }
+  void AddTo(QuadricRecord& r) const
+  {
+    r.A00 = static_cast<float>(r.A00 + this->A00);
+    r.A01 = static_cast<float>(r.A01 + this->A01);
+    r.A02 = static_cast<float>(r.A02 + this->A02);
+    r.A11 = static_cast<float>(r.A11 + this->A11);
+    r.A12 = static_cast<float>(r.A12 + this->A12);
+    r.A22 = static_cast<float>(r.A22 + this->A22);
+  }
+};
 
 /// The constraint planes alone, kept apart (few vertices have any) to report
 /// a geometric error that their weights do not distort.
@@ -788,7 +813,9 @@ private:
   // --- collapses
   void RemoveOrphan(uint32_t x, uint32_t w);
   void PrefetchCollapse(uint32_t v, int stage);
-  void Reevaluate(uint32_t v);
+  /// New best target of v; prefetch false where the collapse that calls it
+  /// fetched v's fan already (its "soon" neighbours).
+  void Reevaluate(uint32_t v, bool prefetch = true);
   /// Whether v's fan is beyond MaximumFanSize (then it is parked, see there).
   bool Parked(uint32_t v) const { return this->Vertices[v].LiveCount > MaximumFanSize; }
   void Park(uint32_t v);
