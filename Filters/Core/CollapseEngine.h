@@ -375,6 +375,19 @@ struct alignas(64) QuadricRecord
 };
 static_assert(sizeof(QuadricRecord) == 64, "one cache line per quadric");
 
+/// Adds the symmetric matrix of m (any record with A00 ... A22) to r's, in
+/// single precision: the one place where a record's matrix grows.
+template <typename M>
+inline void AddMatrix(QuadricRecord& r, const M& m)
+{
+  r.A00 = static_cast<float>(r.A00 + m.A00);
+  r.A01 = static_cast<float>(r.A01 + m.A01);
+  r.A02 = static_cast<float>(r.A02 + m.A02);
+  r.A11 = static_cast<float>(r.A11 + m.A11);
+  r.A12 = static_cast<float>(r.A12 + m.A12);
+  r.A22 = static_cast<float>(r.A22 + m.A22);
+}
+
 /// Sets the face weight of r and its inverse square root, which every cost
 /// evaluation reads (CollapseEngine::Cost): computed once per change, not per
 /// evaluation.
@@ -428,12 +441,7 @@ struct LocalQuadric
   {
     const Vec3 d = Sub(newOrigin, this->Origin);
     const Vec3 ad = this->Apply(d);
-    r.A00 = static_cast<float>(r.A00 + this->A00);
-    r.A01 = static_cast<float>(r.A01 + this->A01);
-    r.A02 = static_cast<float>(r.A02 + this->A02);
-    r.A11 = static_cast<float>(r.A11 + this->A11);
-    r.A12 = static_cast<float>(r.A12 + this->A12);
-    r.A22 = static_cast<float>(r.A22 + this->A22);
+    AddMatrix(r, *this);
     r.G0 = static_cast<float>(r.G0 + this->G0 + ad.X);
     r.G1 = static_cast<float>(r.G1 + this->G1 + ad.Y);
     r.G2 = static_cast<float>(r.G2 + this->G2 + ad.Z);
@@ -458,12 +466,7 @@ struct PlaneThroughOrigin
   }
   void AddTo(QuadricRecord& r) const
   {
-    r.A00 = static_cast<float>(r.A00 + this->A00);
-    r.A01 = static_cast<float>(r.A01 + this->A01);
-    r.A02 = static_cast<float>(r.A02 + this->A02);
-    r.A11 = static_cast<float>(r.A11 + this->A11);
-    r.A12 = static_cast<float>(r.A12 + this->A12);
-    r.A22 = static_cast<float>(r.A22 + this->A22);
+    AddMatrix(r, *this);
   }
 };
 
