@@ -62,33 +62,6 @@ SurfaceStatus PrepareSurface(vtkAlgorithm* filter, vtkPolyData* input, PreparedS
 std::function<bool(double)> CoreProgress(vtkAlgorithm* filter);
 
 /**
- * Upper bound of the builder filters' FeatureWeight: the core's weight of the
- * boundary constraints (TOMBuildOptions::ConstraintWeight, 1000). A heavier
- * weight would hold unlocked sharp edges harder than boundaries (past about
- * 100 it acts as a lock already: LockFeatureEdges is the setting for that),
- * and a huge one overflows the quadrics.
- */
-constexpr double MaximumFeatureWeight = 1000.0;
-
-/**
- * Fills the collapse options of the cores from the settings of a builder
- * filter (vtkTOMBuilder, vtkMergeTreeBuilder), with CoreProgress: one mapping,
- * so that both filters simplify alike.
- */
-template <typename Builder>
-void SetCollapseOptions(Builder* filter, TOMBuildOptions& options)
-{
-  options.PreserveBoundaries = filter->GetPreserveBoundaries();
-  options.PreserveFeatureEdges = filter->GetPreserveFeatureEdges();
-  options.FeatureAngle = filter->GetFeatureAngle();
-  options.LockFeatureEdges = filter->GetLockFeatureEdges();
-  options.FeatureWeight = filter->GetFeatureWeight();
-  options.MaximumNormalDeviation = filter->GetMaximumNormalDeviation();
-  options.MinimumTriangleQuality = filter->GetMinimumTriangleQuality();
-  options.Progress = CoreProgress(filter);
-}
-
-/**
  * Fills `output` with the points, point data, triangles and cell data of
  * `surface` in the TOM order of `result`, and the field data of `input`.
  * Warns on `filter` about triangles the core dropped (degenerate, duplicate)

@@ -5,7 +5,6 @@
 #include "TOMFilterSupport.h"
 #include "vtkMergeTreeFieldData.h"
 
-#include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkObjectFactory.h"
 #include "vtkPolyData.h"
@@ -18,47 +17,11 @@
 vtkStandardNewMacro(vtkMergeTreeBuilder);
 
 vtkMergeTreeBuilder::vtkMergeTreeBuilder()
-  : FeatureWeight(timecritical::TOMBuildOptions().FeatureWeight)
-  , LevelCostRatio(timecritical::MergeTreeBuildOptions().LevelCostRatio)
+  : LevelCostRatio(timecritical::MergeTreeBuildOptions().LevelCostRatio)
   , ShadingWeight(timecritical::MergeTreeErrorOptions().ShadingWeight)
 {
 }
 vtkMergeTreeBuilder::~vtkMergeTreeBuilder() = default;
-
-void vtkMergeTreeBuilder::SetFeatureAngle(double angle)
-{
-  if (timecritical::SetClampedSetting(this, "FeatureAngle", angle, 0.0, 180.0, this->FeatureAngle))
-  {
-    this->Modified();
-  }
-}
-
-void vtkMergeTreeBuilder::SetFeatureWeight(double weight)
-{
-  if (timecritical::SetClampedSetting(this, "FeatureWeight", weight, 0.0,
-        timecritical::MaximumFeatureWeight, this->FeatureWeight))
-  {
-    this->Modified();
-  }
-}
-
-void vtkMergeTreeBuilder::SetMaximumNormalDeviation(double angle)
-{
-  if (timecritical::SetClampedSetting(
-        this, "MaximumNormalDeviation", angle, 0.0, 180.0, this->MaximumNormalDeviation))
-  {
-    this->Modified();
-  }
-}
-
-void vtkMergeTreeBuilder::SetMinimumTriangleQuality(double quality)
-{
-  if (timecritical::SetClampedSetting(
-        this, "MinimumTriangleQuality", quality, 0.0, 1.0, this->MinimumTriangleQuality))
-  {
-    this->Modified();
-  }
-}
 
 void vtkMergeTreeBuilder::SetLevelCostRatio(double ratio)
 {
@@ -76,12 +39,6 @@ void vtkMergeTreeBuilder::SetShadingWeight(double weight)
   {
     this->Modified();
   }
-}
-
-int vtkMergeTreeBuilder::FillInputPortInformation(int, vtkInformation* info)
-{
-  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPolyData");
-  return 1;
 }
 
 int vtkMergeTreeBuilder::RequestData(
@@ -114,7 +71,7 @@ int vtkMergeTreeBuilder::RequestData(
   this->NumberOfMergedPoints = surface.NumberOfMergedPoints;
 
   timecritical::MergeTreeBuildOptions options;
-  timecritical::SetCollapseOptions(this, options.Collapse);
+  this->FillCollapseOptions(options.Collapse);
   options.LevelCostRatio = this->LevelCostRatio;
   options.Errors.ShadingWeight = this->ShadingWeight;
 
@@ -153,17 +110,7 @@ int vtkMergeTreeBuilder::RequestData(
 void vtkMergeTreeBuilder::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "PreserveBoundaries: " << this->PreserveBoundaries << "\n";
-  os << indent << "PreserveFeatureEdges: " << this->PreserveFeatureEdges << "\n";
-  os << indent << "FeatureAngle: " << this->FeatureAngle << "\n";
-  os << indent << "LockFeatureEdges: " << this->LockFeatureEdges << "\n";
-  os << indent << "FeatureWeight: " << this->FeatureWeight << "\n";
-  os << indent << "MaximumNormalDeviation: " << this->MaximumNormalDeviation << "\n";
-  os << indent << "MinimumTriangleQuality: " << this->MinimumTriangleQuality << "\n";
   os << indent << "LevelCostRatio: " << this->LevelCostRatio << "\n";
   os << indent << "ShadingWeight: " << this->ShadingWeight << "\n";
-  os << indent << "NumberOfDroppedCells: " << this->NumberOfDroppedCells << "\n";
-  os << indent << "NumberOfMergedPoints: " << this->NumberOfMergedPoints << "\n";
   os << indent << "LevelCount: " << this->LevelCount << "\n";
-  os << indent << "BuildTime: " << this->BuildTime << "\n";
 }

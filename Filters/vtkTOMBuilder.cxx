@@ -5,7 +5,6 @@
 #include "TOMFilterSupport.h"
 #include "vtkTOMFieldData.h"
 
-#include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkObjectFactory.h"
 #include "vtkPolyData.h"
@@ -15,52 +14,8 @@
 
 vtkStandardNewMacro(vtkTOMBuilder);
 
-vtkTOMBuilder::vtkTOMBuilder()
-  : FeatureWeight(timecritical::TOMBuildOptions().FeatureWeight)
-{
-}
+vtkTOMBuilder::vtkTOMBuilder() = default;
 vtkTOMBuilder::~vtkTOMBuilder() = default;
-
-void vtkTOMBuilder::SetFeatureAngle(double angle)
-{
-  if (timecritical::SetClampedSetting(this, "FeatureAngle", angle, 0.0, 180.0, this->FeatureAngle))
-  {
-    this->Modified();
-  }
-}
-
-void vtkTOMBuilder::SetFeatureWeight(double weight)
-{
-  if (timecritical::SetClampedSetting(this, "FeatureWeight", weight, 0.0,
-        timecritical::MaximumFeatureWeight, this->FeatureWeight))
-  {
-    this->Modified();
-  }
-}
-
-void vtkTOMBuilder::SetMaximumNormalDeviation(double angle)
-{
-  if (timecritical::SetClampedSetting(
-        this, "MaximumNormalDeviation", angle, 0.0, 180.0, this->MaximumNormalDeviation))
-  {
-    this->Modified();
-  }
-}
-
-void vtkTOMBuilder::SetMinimumTriangleQuality(double quality)
-{
-  if (timecritical::SetClampedSetting(
-        this, "MinimumTriangleQuality", quality, 0.0, 1.0, this->MinimumTriangleQuality))
-  {
-    this->Modified();
-  }
-}
-
-int vtkTOMBuilder::FillInputPortInformation(int, vtkInformation* info)
-{
-  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPolyData");
-  return 1;
-}
 
 int vtkTOMBuilder::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
@@ -92,7 +47,7 @@ int vtkTOMBuilder::RequestData(
   this->NumberOfMergedPoints = surface.NumberOfMergedPoints;
 
   timecritical::TOMBuildOptions options;
-  timecritical::SetCollapseOptions(this, options);
+  this->FillCollapseOptions(options);
 
   timecritical::TOMBuildResult result;
   try
@@ -116,19 +71,4 @@ int vtkTOMBuilder::RequestData(
   this->BuildTime = vtkTimerLog::GetUniversalTime() - start;
   this->UpdateProgress(1.0);
   return 1;
-}
-
-void vtkTOMBuilder::PrintSelf(ostream& os, vtkIndent indent)
-{
-  this->Superclass::PrintSelf(os, indent);
-  os << indent << "PreserveBoundaries: " << this->PreserveBoundaries << "\n";
-  os << indent << "PreserveFeatureEdges: " << this->PreserveFeatureEdges << "\n";
-  os << indent << "FeatureAngle: " << this->FeatureAngle << "\n";
-  os << indent << "LockFeatureEdges: " << this->LockFeatureEdges << "\n";
-  os << indent << "FeatureWeight: " << this->FeatureWeight << "\n";
-  os << indent << "MaximumNormalDeviation: " << this->MaximumNormalDeviation << "\n";
-  os << indent << "MinimumTriangleQuality: " << this->MinimumTriangleQuality << "\n";
-  os << indent << "NumberOfDroppedCells: " << this->NumberOfDroppedCells << "\n";
-  os << indent << "NumberOfMergedPoints: " << this->NumberOfMergedPoints << "\n";
-  os << indent << "BuildTime: " << this->BuildTime << "\n";
 }

@@ -18,121 +18,28 @@
  * no cells: a rank without data in parallel) gives an empty output without a
  * message.
  *
- * @sa vtkExtractTOMResolution vtkTOMFieldData
+ * The simplification settings and build statistics are those of
+ * vtkCollapseHierarchyBuilder, shared with vtkMergeTreeBuilder.
+ *
+ * @sa vtkCollapseHierarchyBuilder vtkExtractTOMResolution vtkTOMFieldData
  */
 #ifndef vtkTOMBuilder_h
 #define vtkTOMBuilder_h
 
 #include "TimeCriticalFiltersModule.h" // for export macro
-#include "vtkPolyDataAlgorithm.h"
+#include "vtkCollapseHierarchyBuilder.h"
 
-class TIMECRITICALFILTERS_EXPORT vtkTOMBuilder : public vtkPolyDataAlgorithm
+class TIMECRITICALFILTERS_EXPORT vtkTOMBuilder : public vtkCollapseHierarchyBuilder
 {
 public:
   static vtkTOMBuilder* New();
-  vtkTypeMacro(vtkTOMBuilder, vtkPolyDataAlgorithm);
-  void PrintSelf(ostream& os, vtkIndent indent) override;
-
-  ///@{
-  /// Keep open boundaries in place as long as other collapses remain. Default on.
-  vtkSetMacro(PreserveBoundaries, bool);
-  vtkGetMacro(PreserveBoundaries, bool);
-  vtkBooleanMacro(PreserveBoundaries, bool);
-  ///@}
-
-  ///@{
-  /// Keep sharp edges (dihedral angle above FeatureAngle): constraint planes
-  /// along them make collapses across them cost more (FeatureWeight), or lock
-  /// them (LockFeatureEdges). Default on.
-  vtkSetMacro(PreserveFeatureEdges, bool);
-  vtkGetMacro(PreserveFeatureEdges, bool);
-  vtkBooleanMacro(PreserveFeatureEdges, bool);
-  ///@}
-
-  ///@{
-  /// Dihedral angle in degrees above which an edge is sharp, in [0, 180]
-  /// (NaN is rejected with an error). Default 45.
-  void SetFeatureAngle(double angle);
-  vtkGetMacro(FeatureAngle, double);
-  ///@}
-
-  ///@{
-  /**
-   * Lock sharp edges like open boundaries (with PreserveFeatureEdges on):
-   * their vertices only slide along them, and vertices where they turn
-   * sharply (a cube's corners) stay, until no other collapse is left. Off
-   * (default): sharp edges are weighted in the quadrics by FeatureWeight
-   * instead, so collapses across them cost more but are not forbidden.
-   * A lock suits clean CAD parts, whose sharp edges are all true creases; on
-   * low-poly organic meshes a fixed FeatureAngle also flags edges of smooth
-   * regions (653 of 8,700 on the cow at 45 degrees), whose locked vertices
-   * stay while the rest is over-simplified: about 3 times the Hausdorff error
-   * of the best vertex-subset simplifier at 10% of the cow's triangles
-   * (timecritical::TOMBuildOptions::LockFeatureEdges; README, "TOM quality").
-   */
-  vtkSetMacro(LockFeatureEdges, bool);
-  vtkGetMacro(LockFeatureEdges, bool);
-  vtkBooleanMacro(LockFeatureEdges, bool);
-  ///@}
-
-  ///@{
-  /**
-   * Weight of the two constraint planes along each sharp edge when sharp
-   * edges are weighted, not locked (PreserveFeatureEdges on,
-   * LockFeatureEdges off): moving a vertex across a sharp edge costs this
-   * many times more than moving it off a face (per squared edge length,
-   * like the faces' area weights). 0 leaves sharp edges to the face
-   * quadrics alone. Of 1, 3, 10 and 30, 10 gave the lowest worst-case error
-   * on the benchmark meshes; 100 and more act as a lock on the cow
-   * (timecritical::TOMBuildOptions::FeatureWeight). Clamped to [0, 1000]
-   * (1000 is the weight of the boundary constraints; for a harder hold use
-   * LockFeatureEdges); NaN is rejected with an error. Default 10.
-   */
-  void SetFeatureWeight(double weight);
-  vtkGetMacro(FeatureWeight, double);
-  ///@}
-
-  ///@{
-  /// Reject collapses that rotate a triangle normal by more than this
-  /// (degrees, [0, 180]; NaN is rejected with an error). Default 90.
-  void SetMaximumNormalDeviation(double angle);
-  vtkGetMacro(MaximumNormalDeviation, double);
-  ///@}
-
-  ///@{
-  /**
-   * Sliver rejection (Xia, El-Sana & Varshney eq. 3): collapses creating a
-   * triangle of lower quality are postponed while others remain. In [0, 1]
-   * (NaN is rejected with an error); 0 (default) disables it.
-   */
-  void SetMinimumTriangleQuality(double quality);
-  vtkGetMacro(MinimumTriangleQuality, double);
-  ///@}
-
-  ///@{
-  /// Statistics of the last build.
-  vtkGetMacro(NumberOfDroppedCells, vtkIdType);
-  vtkGetMacro(NumberOfMergedPoints, vtkIdType);
-  vtkGetMacro(BuildTime, double);
-  ///@}
+  vtkTypeMacro(vtkTOMBuilder, vtkCollapseHierarchyBuilder);
 
 protected:
   vtkTOMBuilder();
   ~vtkTOMBuilder() override;
 
-  int FillInputPortInformation(int port, vtkInformation* info) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
-
-  bool PreserveBoundaries = true;
-  bool PreserveFeatureEdges = true;
-  double FeatureAngle = 45.0;
-  bool LockFeatureEdges = false;
-  double FeatureWeight; // the core's default (constructor)
-  double MaximumNormalDeviation = 90.0;
-  double MinimumTriangleQuality = 0.0;
-  vtkIdType NumberOfDroppedCells = 0;
-  vtkIdType NumberOfMergedPoints = 0;
-  double BuildTime = 0.0;
 
 private:
   vtkTOMBuilder(const vtkTOMBuilder&) = delete;
