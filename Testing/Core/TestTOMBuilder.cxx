@@ -423,33 +423,6 @@ TEST(TOMBuilder, TwoComponentsStaySeparate)
 
 namespace
 {
-/// The cube [-0.5, 0.5]^3 of MakeCube with its face-interior points moved
-/// along the face normal by up to `noise` (edges and corners stay exact).
-TriangleMesh NoisyCube(size_t n, double noise)
-{
-  TriangleMesh mesh = timecritical::testing::MakeCube(n);
-  uint32_t state = 12345;
-  for (size_t i = 0; i < mesh.NumberOfPoints(); ++i)
-  {
-    double* p = &mesh.Points[3 * i];
-    int faces = 0, axis = 0;
-    for (int k = 0; k < 3; ++k)
-    {
-      if (std::abs(p[k]) == 0.5)
-      {
-        ++faces;
-        axis = k;
-      }
-    }
-    state = state * 1664525u + 1013904223u;
-    if (faces == 1)
-    {
-      p[axis] += (p[axis] > 0 ? 1.0 : -1.0) * noise * ((state >> 8) / double(1 << 24) - 0.5);
-    }
-  }
-  return mesh;
-}
-
 /// Checks that every triangle of the TOM at the given fraction lies on one
 /// face of the cube (within `slack` of its plane) and that the 8 corners are there.
 void ExpectCubeIntact(const TriangleMesh& mesh, const TOMBuildResult& r, double fraction, double slack)
@@ -508,7 +481,7 @@ TEST(TOMBuilder, SharpCubeEdgesAreKept)
   // With bumpy faces the defaults (feature edges weighted, not locked) keep
   // the edges too, where plain quadrics start cutting corners.
   const double noise = 0.6 / 16;
-  const TriangleMesh noisy = NoisyCube(16, noise);
+  const TriangleMesh noisy = timecritical::testing::MakeNoisyCube(16, noise);
   const TOMBuildResult rn = Build(noisy);
   ExpectValidResult(noisy, rn);
   for (double fraction : { 0.25, 0.1, 0.05 })

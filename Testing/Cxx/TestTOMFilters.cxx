@@ -4,6 +4,7 @@
 #include "FilterTestSupport.h"
 #include "TOMBuilder.h"
 #include "TOMMesh.h"
+#include "TestMeshIO.h"
 #include "vtkExtractTOMResolution.h"
 #include "vtkMergeTreeBuilder.h"
 #include "vtkTOMBuilder.h"
@@ -25,12 +26,11 @@
 
 #include <gtest/gtest.h>
 
-#include <cmath>
 #include <algorithm>
-#include <array>
+#include <cstddef>
+#include <cstdint>
 #include <fstream>
 #include <limits>
-#include <map>
 #include <set>
 #include <sstream>
 #include <string>
@@ -395,79 +395,22 @@ TEST(vtkTOMBuilder, SettingsRejectNaNAndClamp)
 
 namespace
 {
-/**
- * A closed cube [-0.5, 0.5]^3, each face split into n x n quads (two
- * triangles each) that share the points of the cube's edges, so that its 12
- * edges are 90-degree creases of one closed surface; every face-interior
- * point is moved off its face by a fixed pseudo-random amount in
- * [-noise/2, noise/2]. Bumpy faces make the collapse order depend on how the
- * creases are held, flat ones would leave many ties.
- */
-vtkSmartPointer<vtkPolyData> NoisyCube(int n, double noise)
+/// TestTOMBuilder's noisy cube (tt::MakeNoisyCube) as vtkPolyData.
+vtkSmartPointer<vtkPolyData> NoisyCube(std::size_t n, double noise)
 {
+  const tt::TriangleMesh mesh = tt::MakeNoisyCube(n, noise);
   vtkNew<vtkPoints> points;
   points->SetDataTypeToDouble();
-  std::map<std::array<int, 3>, vtkIdType> ids;
-  auto id = [&](const std::array<int, 3>& ijk) {
-    auto found = ids.find(ijk);
-    if (found != ids.end())
-    {
-      return found->second;
-    }
-    const vtkIdType i = points->InsertNextPoint(
-      ijk[0] / double(n) - 0.5, ijk[1] / double(n) - 0.5, ijk[2] / double(n) - 0.5);
-    ids.emplace(ijk, i);
-    return i;
-  };
-  vtkNew<vtkCellArray> polys;
-  for (int a = 0; a < 3; ++a)
+  points->SetNumberOfPoints(static_cast<vtkIdType>(mesh.NumberOfPoints()));
+  for (std::size_t i = 0; i < mesh.NumberOfPoints(); ++i)
   {
-    const int u = (a + 1) % 3, v = (a + 2) % 3;
-    for (int side : { 0, n })
-    {
-      for (int i = 0; i < n; ++i)
-      {
-        for (int j = 0; j < n; ++j)
-        {
-          auto corner = [&](int di, int dj) {
-            std::array<int, 3> ijk{};
-            ijk[a] = side;
-            ijk[u] = i + di;
-            ijk[v] = j + dj;
-            return id(ijk);
-          };
-          // Counter-clockwise in (u, v): normal +a, outward on the far side.
-          std::array<vtkIdType, 4> q{ corner(0, 0), corner(1, 0), corner(1, 1), corner(0, 1) };
-          if (side == 0)
-          {
-            std::swap(q[1], q[3]);
-          }
-          polys->InsertNextCell({ q[0], q[1], q[2] });
-          polys->InsertNextCell({ q[0], q[2], q[3] });
-        }
-      }
-    }
+    points->SetPoint(static_cast<vtkIdType>(i), &mesh.Points[3 * i]);
   }
-  uint32_t state = 12345;
-  for (vtkIdType i = 0; i < points->GetNumberOfPoints(); ++i)
+  vtkNew<vtkCellArray> polys;
+  for (std::size_t t = 0; t < mesh.NumberOfTriangles(); ++t)
   {
-    double p[3];
-    points->GetPoint(i, p);
-    int faces = 0, axis = 0;
-    for (int k = 0; k < 3; ++k)
-    {
-      if (std::abs(p[k]) == 0.5)
-      {
-        ++faces;
-        axis = k;
-      }
-    }
-    state = state * 1664525u + 1013904223u;
-    if (faces == 1)
-    {
-      p[axis] += (p[axis] > 0 ? 1.0 : -1.0) * noise * ((state >> 8) / double(1 << 24) - 0.5);
-      points->SetPoint(i, p);
-    }
+    const uint32_t* v = &mesh.Triangles[3 * t];
+    polys->InsertNextCell({ vtkIdType(v[0]), vtkIdType(v[1]), vtkIdType(v[2]) });
   }
   auto cube = vtkSmartPointer<vtkPolyData>::New();
   cube->SetPoints(points);

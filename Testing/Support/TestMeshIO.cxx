@@ -1853,5 +1853,31 @@ TriangleMesh MakeCube(std::size_t n)
   }
   return mesh;
 }
+
+//------------------------------------------------------------------------------
+TriangleMesh MakeNoisyCube(std::size_t n, double noise)
+{
+  TriangleMesh mesh = MakeCube(n);
+  uint32_t state = 12345;
+  for (std::size_t i = 0; i < mesh.NumberOfPoints(); ++i)
+  {
+    double* p = &mesh.Points[3 * i];
+    int faces = 0, axis = 0;
+    for (int k = 0; k < 3; ++k)
+    {
+      if (std::abs(p[k]) == 0.5)
+      {
+        ++faces;
+        axis = k;
+      }
+    }
+    state = state * 1664525u + 1013904223u;
+    if (faces == 1)
+    {
+      p[axis] += (p[axis] > 0 ? 1.0 : -1.0) * noise * ((state >> 8) / double(1 << 24) - 0.5);
+    }
+  }
+  return mesh;
+}
 }
 }

@@ -226,6 +226,12 @@ TriangleMesh MakeTorus(
 /// 6 n^2 + 2 points, 12 n^2 triangles, Euler characteristic 2. Requires n >= 1.
 TriangleMesh MakeCube(std::size_t n);
 
+/// MakeCube(n) with every face-interior point moved along its face normal by
+/// a fixed pseudo-random amount in [-noise/2, noise/2]; edges and corners
+/// stay exact. Bumpy faces make the collapse order depend on how the creases
+/// are held (flat ones would leave many ties): the feature-edge tests' mesh.
+TriangleMesh MakeNoisyCube(std::size_t n, double noise);
+
 /// n triangles around point 0, their other corners on the unit circle (flat)
 /// or scattered over the unit sphere by a fixed pseudo-random sequence
 /// (crumpled: neighbours far apart, most collapses fold something): the
