@@ -915,15 +915,9 @@ bool CollapseEngine::BestTarget(uint32_t v, Candidate& best, bool prefetch)
       Prefetch(&this->Vertices[tri.V[Next3(list[i] & 3u)]]);
     }
   }
-  const LocalQuadric q = this->QuadricOf(v);
-  this->ForEachAllowedTarget(v, [&](uint32_t x) {
-    const double c = this->Cost(q, x);
-    if (c < best.Cost)
-    {
-      best.Cost = c;
-      best.Target = x;
-    }
-  });
+  CheapestTarget cheapest(this->QuadricOf(v), this->Vertices.data());
+  this->ForEachAllowedTarget(v, [&cheapest](uint32_t x) { cheapest.Offer(x); });
+  best = cheapest.Best();
   return best.Target != Invalid;
 }
 
@@ -1427,16 +1421,8 @@ void CollapseEngine::ApplyCollapse(uint32_t u, uint32_t w)
   this->Retry.clear();
   const bool retry = rw.LiveCount <= RetryFanSize;
   {
-    Candidate best{ std::numeric_limits<double>::infinity(), Invalid };
-    const LocalQuadric q(qw, rw.P);
-    auto consider = [&](uint32_t x) {
-      const double c = this->Cost(q, x);
-      if (c < best.Cost)
-      {
-        best.Cost = c;
-        best.Target = x;
-      }
-    };
+    CheapestTarget cheapest(LocalQuadric(qw, rw.P), this->Vertices.data());
+    auto consider = [&cheapest](uint32_t x) { cheapest.Offer(x); };
     const int kind = this->EffectiveKind(w);
     this->ForEachLiveTriangle(w, [&](const Tri& tri, uint32_t j) {
       const uint32_t a = tri.V[Next3(j)];
@@ -1480,7 +1466,7 @@ void CollapseEngine::ApplyCollapse(uint32_t u, uint32_t w)
     }
     else
     {
-      this->SetBest(w, best);
+      this->SetBest(w, cheapest.Best());
     }
   }
 
