@@ -6,18 +6,6 @@
 
 #include "vtkInformation.h"
 
-namespace
-{
-/**
- * Upper bound of FeatureWeight: the core's weight of the boundary constraints
- * (TOMBuildOptions::ConstraintWeight, 1000). A heavier weight would hold
- * unlocked sharp edges harder than boundaries (past about 100 it acts as a
- * lock already: LockFeatureEdges is the setting for that), and a huge one
- * overflows the quadrics.
- */
-constexpr double MaximumFeatureWeight = 1000.0;
-}
-
 vtkCollapseHierarchyBuilder::vtkCollapseHierarchyBuilder()
   : FeatureWeight(timecritical::TOMBuildOptions().FeatureWeight)
 {
@@ -34,8 +22,13 @@ void vtkCollapseHierarchyBuilder::SetFeatureAngle(double angle)
 
 void vtkCollapseHierarchyBuilder::SetFeatureWeight(double weight)
 {
+  // At most the core's weight of the boundary constraints: a heavier weight
+  // would hold unlocked sharp edges harder than boundaries (past about 100 it
+  // acts as a lock already: LockFeatureEdges is the setting for that), and a
+  // huge one overflows the quadrics.
+  const double maximum = timecritical::TOMBuildOptions().ConstraintWeight;
   if (timecritical::SetClampedSetting(
-        this, "FeatureWeight", weight, 0.0, MaximumFeatureWeight, this->FeatureWeight))
+        this, "FeatureWeight", weight, 0.0, maximum, this->FeatureWeight))
   {
     this->Modified();
   }
