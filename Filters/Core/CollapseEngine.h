@@ -426,12 +426,7 @@ struct LocalQuadric
   {
   }
   /// A d, for an offset d from the origin.
-  Vec3 Apply(const Vec3& d) const
-  {
-    return { this->A00 * d.X + this->A01 * d.Y + this->A02 * d.Z,
-      this->A01 * d.X + this->A11 * d.Y + this->A12 * d.Z,
-      this->A02 * d.X + this->A12 * d.Y + this->A22 * d.Z };
-  }
+  Vec3 Apply(const Vec3& d) const;
   /// Q(p), at least 0.
   double Evaluate(const Vec3& p) const;
   /// Adds this quadric, re-expressed around newOrigin, to the record r (stored around newOrigin).
@@ -522,12 +517,18 @@ struct CostLanes
     , MomentWeight(EdgeLengthWeight * q.Weight)
   {
   }
+  /// A d, for the offset d from the origin.
+  void Apply(T dx, T dy, T dz, T& adx, T& ady, T& adz) const
+  {
+    adx = this->A00 * dx + this->A01 * dy + this->A02 * dz;
+    ady = this->A01 * dx + this->A11 * dy + this->A12 * dz;
+    adz = this->A02 * dx + this->A12 * dy + this->A22 * dz;
+  }
   /// The quadric at the offset d from its origin, at least 0.
   T Value(T dx, T dy, T dz) const
   {
-    const T adx = this->A00 * dx + this->A01 * dy + this->A02 * dz;
-    const T ady = this->A01 * dx + this->A11 * dy + this->A12 * dz;
-    const T adz = this->A02 * dx + this->A12 * dy + this->A22 * dz;
+    T adx, ady, adz;
+    this->Apply(dx, dy, dz, adx, ady, adz);
     const T linear = this->G0 * dx + this->G1 * dy + this->G2 * dz;
     return KeepPositive(this->C + T(2.0) * linear + (dx * adx + dy * ady + dz * adz));
   }
@@ -539,6 +540,13 @@ struct CostLanes
     return this->Value(dx, dy, dz) * this->InverseRootWeight + this->MomentWeight * length2;
   }
 };
+
+inline Vec3 LocalQuadric::Apply(const Vec3& d) const
+{
+  Vec3 ad;
+  CostLanes<double>(*this).Apply(d.X, d.Y, d.Z, ad.X, ad.Y, ad.Z);
+  return ad;
+}
 
 inline double LocalQuadric::Evaluate(const Vec3& p) const
 {

@@ -49,7 +49,8 @@ QuadricRecord RandomRecord(std::mt19937& rng)
 double ReferenceCost(const LocalQuadric& q, const Vec3& p)
 {
   const Vec3 d = Sub(p, q.Origin);
-  const Vec3 ad = q.Apply(d);
+  const Vec3 ad{ q.A00 * d.X + q.A01 * d.Y + q.A02 * d.Z, q.A01 * d.X + q.A11 * d.Y + q.A12 * d.Z,
+    q.A02 * d.X + q.A12 * d.Y + q.A22 * d.Z };
   const double r = q.C + 2.0 * (q.G0 * d.X + q.G1 * d.Y + q.G2 * d.Z) + Dot(d, ad);
   return (r > 0.0 ? r : 0.0) * q.InverseRootWeight + EdgeLengthWeight * q.Weight * Dot(d, d);
 }
