@@ -5,9 +5,9 @@ if (TIMECRITICAL_PLUGIN_BUILDS_MODULES)
   # Built as an external plugin directory: the modules are not built yet.
   set(timecritical_plugin_module_args
     MODULE_FILES
-      "${CMAKE_CURRENT_LIST_DIR}/../Filters/Core/vtk.module"
+      "${CMAKE_CURRENT_LIST_DIR}/../Core/Mesh/vtk.module"
+      "${CMAKE_CURRENT_LIST_DIR}/../Core/Budget/vtk.module"
       "${CMAKE_CURRENT_LIST_DIR}/../Filters/vtk.module"
-      "${CMAKE_CURRENT_LIST_DIR}/../Rendering/Core/vtk.module"
       "${CMAKE_CURRENT_LIST_DIR}/../Rendering/vtk.module"
       "${CMAKE_CURRENT_LIST_DIR}/Views/vtk.module")
   if (NOT COMMAND timecritical_strict_warnings)

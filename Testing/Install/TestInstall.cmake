@@ -21,6 +21,8 @@ run("${CMAKE_COMMAND}" -S "${SOURCE_DIR}/Testing/Install/Consumer" -B "${WORK_DI
   "-DTimeCritical_DIR=${prefix}/lib/cmake/TimeCritical" -DCMAKE_BUILD_TYPE=Release)
 run("${CMAKE_COMMAND}" --build "${WORK_DIR}/consumer")
 run("${WORK_DIR}/consumer/consumer")
+run("${WORK_DIR}/consumer/core_consumer")
+run("${WORK_DIR}/consumer/former_core_consumer")
 
 run("${CMAKE_COMMAND}" -E env "PYTHONPATH=${prefix}/lib/python3/dist-packages"
   "${PYTHON}" -c "from timecritical import vtkTOMBuilder, vtkExtractTOMResolution, vtkTOMPolyDataMapper; print(vtkTOMBuilder().GetClassName())")

@@ -18,7 +18,7 @@
  * the file's decimal rounded to float (on the shared OBJ meshes 90-99.99% of
  * the coordinates differ from the double parse, by at most 5.9e-8 relative),
  * igea's float coordinates are unchanged. A coordinate beyond float range is
- * an error. Testing/Core/TestMeshIOLoaders.cxx pins the loaded meshes
+ * an error. Testing/Core/Mesh/TestMeshIOLoaders.cxx pins the loaded meshes
  * (counts, bounding boxes, coordinate and triangle hashes) and these facts.
  *
  * By hand, because OpenMesh lacks it:
