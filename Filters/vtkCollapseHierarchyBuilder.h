@@ -60,10 +60,9 @@ public:
    * instead, so collapses across them cost more but are not forbidden.
    * A lock suits clean CAD parts, whose sharp edges are all true creases; on
    * low-poly organic meshes a fixed FeatureAngle also flags edges of smooth
-   * regions (653 of 8,700 on the cow at 45 degrees), whose locked vertices
-   * stay while the rest is over-simplified: about 3 times the Hausdorff error
-   * of the best vertex-subset simplifier at 10% of the cow's triangles
-   * (timecritical::TOMBuildOptions::LockFeatureEdges; README, "TOM quality").
+   * regions, whose locked vertices stay while the rest is over-simplified
+   * (timecritical::TOMBuildOptions::LockFeatureEdges; figures in
+   * docs/classes.md and docs/benchmarks/tom.md, "TOM quality").
    */
   vtkSetMacro(LockFeatureEdges, bool);
   vtkGetMacro(LockFeatureEdges, bool);
@@ -77,9 +76,9 @@ public:
    * LockFeatureEdges off): moving a vertex across a sharp edge costs this
    * many times more than moving it off a face (per squared edge length,
    * like the faces' area weights). 0 leaves sharp edges to the face
-   * quadrics alone. Of 1, 3, 10 and 30, 10 gave the lowest worst-case error
-   * on the benchmark meshes; 100 and more act as a lock on the cow
-   * (timecritical::TOMBuildOptions::FeatureWeight). Clamped to [0, 1000]
+   * quadrics alone; very large weights act as a lock. The default is the
+   * weight that gave the lowest worst-case error on the benchmark meshes
+   * (docs/classes.md; timecritical::TOMBuildOptions::FeatureWeight). Clamped to [0, 1000]
    * (1000 is the weight of the boundary constraints; for a harder hold use
    * LockFeatureEdges); NaN is rejected with an error. Default 10.
    */

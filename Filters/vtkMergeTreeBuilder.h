@@ -19,7 +19,7 @@
  * output without a message. The simplification settings and the other build
  * statistics are those of vtkCollapseHierarchyBuilder, as in vtkTOMBuilder.
  *
- * Save the output as .vtp in Binary or Ascii data mode (see the README on
+ * Save the output as .vtp in Binary or Ascii data mode (see docs/known-issues.md on
  * appended mode).
  *
  * @sa vtkCollapseHierarchyBuilder vtkTOMBuilder vtkMergeTreeFieldData vtkExtractViewDependentMesh
@@ -42,9 +42,9 @@ public:
    * Level cost cap (timecritical::MergeTreeBuildOptions::LevelCostRatio): a
    * level takes collapses least error first only while the next costs at
    * most this many times the greedy order's frontier, so that the merge-tree
-   * TOM stays nearly as accurate as vtkTOMBuilder's (within about 1.3x) for
-   * 10-85% more levels. 0 gives the paper's maximal levels (shallowest tree,
-   * up to tens of times the error at half the triangles). Default 2, >= 0.
+   * TOM stays nearly as accurate as vtkTOMBuilder's for somewhat more levels
+   * (figures in docs/classes.md). 0 gives the paper's maximal levels
+   * (shallowest tree, far larger errors at high resolutions). Default 2, >= 0.
    */
   void SetLevelCostRatio(double ratio);
   vtkGetMacro(LevelCostRatio, double);
@@ -55,9 +55,9 @@ public:
    * Weight of the shading error in each node's error
    * (timecritical::MergeTreeErrorOptions::ShadingWeight): lost normal
    * variation times the node's radius counts like a geometric displacement,
-   * so that a 1-pixel front also keeps the shading of fine bumps (on a
-   * scanned face: 45 dB instead of 36 dB against the full mesh, for 7.6%
-   * instead of 2.3% of the triangles). 0: geometric error only. Default 1, >= 0.
+   * so that a 1-pixel front also keeps the shading of fine bumps, at the
+   * price of more triangles (figures in docs/classes.md). 0: geometric error
+   * only. Default 1, >= 0.
    */
   void SetShadingWeight(double weight);
   vtkGetMacro(ShadingWeight, double);

@@ -10,8 +10,8 @@
  * that vtkMultiresolutionPolyDataMapper can draw it at any resolution. The
  * composite structure is kept.
  *
- * Builds are the expensive part (about a second per million triangles on one
- * core), so this filter never builds a leaf twice for the same content:
+ * Builds are the expensive part (build times in docs/paraview.md), so this
+ * filter never builds a leaf twice for the same content:
  * - a leaf that already carries the requested hierarchy (the output of one of
  *   those builders, read from a file) passes unchanged;
  * - across executions, a leaf whose points, cells and point and cell data

@@ -20,8 +20,8 @@ build="${TIMECRITICAL_ASAN_BUILD_DIR:-$root/build-asan}"
 timing_tests='^(MergeTreeAttributes\.Speed|WeldPoints\.LargeMeshIsFast|ActiveSetOptimizer\.HonoursTinyTimeLimits)$'
 mkdir -p "$build"
 
-# -O1 -g1 compiles about three times faster than -O2 -g (the tests of the VTK
-# classes dominate) and still gives file:line in the reports; NDEBUG stays off.
+# -O1 -g1 compiles much faster than -O2 -g (the tests of the VTK classes
+# dominate) and still gives file:line in the reports; NDEBUG stays off.
 nice -n 10 cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1" "-DCMAKE_C_FLAGS_RELWITHDEBINFO=-O1 -g1" \
   -DTIMECRITICAL_SANITIZERS=address,undefined -DTIMECRITICAL_BUILD_BENCHMARKS=OFF \
@@ -31,8 +31,7 @@ nice -n 10 cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
 nice -n 10 cmake --build "$build" -j "$(nproc)" --target timecritical_cxx_tests
 cd "$build"
 # The rendering tests one at a time: some check frame times their renderer
-# measured, which a second instrumented test rendering next to them can skew
-# (seen once: ViewDependentRenderer.FixedAccuracyIgnoresTheTargetBudgetFollowsIt).
+# measured, which a second instrumented test rendering next to them can skew.
 status=0
 nice -n 10 ctest --output-on-failure -j "$(nproc)" -L 'core|vtk' -LE 'python|render' \
   -E "$timing_tests" "$@" || status=$?

@@ -4,7 +4,7 @@
 # frame times, RSS and heap in use, fails on VTK errors or memory growth.
 # Builds nothing: run scripts/build.sh first. Results: ./soak-output/soak.json
 # or the folder given as first argument; further arguments go to soak.py
-# (e.g. --frames 2000). About 10 minutes on 2 cores with llvmpipe.
+# (e.g. --frames 2000).
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${TIMECRITICAL_BUILD_DIR:-$root/build}"

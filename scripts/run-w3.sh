@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# W3 scale benchmark (issue 12, item 6): >= 10M triangles in >= 2,000 objects
+# W3 scale benchmark: >= 10M triangles in >= 2,000 objects
 # at a 100 ms target, with the renderer's memory above the input data.
 # Builds nothing: run scripts/build.sh (or scripts/run-demo.sh) first.
 # Results go to ./w3-output or the folder given as first argument (the TOMs

@@ -17,10 +17,10 @@ namespace timecritical
  * cost(r) = t_fixed + tmax^T r, rmin <= r <= 1 (eq. 4).
  *
  * Extensions:
- * - a per-draw-call term: with a software rasterizer (Mesa llvmpipe) one draw
- *   call costs 0.25-0.35 ms, and a multiresolution mapper draws many objects in
- *   one call, so the per-object setup is optional (0 by default) and the draw
- *   calls are counted separately;
+ * - a per-draw-call term: with a software rasterizer (Mesa llvmpipe) a draw
+ *   call costs far more than an object's setup, and a multiresolution mapper
+ *   draws many objects in one call, so the per-object setup is optional (0 by
+ *   default) and the draw calls are counted separately;
  * - PixelMode::Additive: a software rasterizer does not overlap geometry and
  *   fill the way a hardware pipeline does, so the fill time adds to the
  *   triangle time; it then is resolution-independent and goes to t_fixed, and

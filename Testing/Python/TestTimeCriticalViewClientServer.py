@@ -2,7 +2,7 @@
 """The Time-Critical Render View in client-server mode: `pvpython TestTimeCriticalViewClientServer.py`.
 
 Starts a `pvserver` (TIMECRITICAL_PVSERVER, on a free port), connects to it,
-loads the plugin on the server and the client as the README says, shows a
+loads the plugin on the server and the client as docs/paraview.md says, shows a
 surface in the view and renders it on the server (the view always renders
 where the data is): the image must be the one the same scene gives in a
 builtin session, and the client's statistics overlay shows the server's
@@ -28,6 +28,9 @@ from timecritical_testing import PLUGIN, output_dir, read_png
 
 OUT = output_dir("client-server")
 SIZE = [400, 300]
+# The loopback address, not "localhost": a machine without /etc/hosts (a fresh
+# chroot, a minimal container) is legitimate and cannot resolve the name.
+LOOPBACK = "127.0.0.1"
 
 
 def fail(message, server=None):
@@ -39,7 +42,7 @@ def fail(message, server=None):
 
 def free_port():
     with socket.socket() as probe:
-        probe.bind(("localhost", 0))
+        probe.bind((LOOPBACK, 0))
         return probe.getsockname()[1]
 
 
@@ -90,7 +93,7 @@ def render_scene(name, statistics=None):
 port = free_port()
 server = start_server(port)
 try:
-    Connect("localhost", port)
+    Connect(LOOPBACK, port)
     LoadPlugin(PLUGIN, remote=True, ns=globals())
     LoadPlugin(PLUGIN, remote=False, ns=globals())
     texts = []

@@ -253,7 +253,7 @@ inline void ExpectDataTravelsWithPointsAndTriangles(vtkPolyData* input, vtkPolyD
 /**
  * Writes `data` to `path` as a .vtp file and reads it back into `back`.
  * Inline binary: Debian 12's VTK 9.2 cannot read back appended-mode files
- * with its patched expat (a platform bug, see README).
+ * with its patched expat (a platform bug, see docs/known-issues.md).
  */
 inline void WriteAndReadBack(
   vtkPolyData* data, const std::string& path, vtkSmartPointer<vtkPolyData>& back)

@@ -6,18 +6,17 @@
  * VTK-free triangle mesh loading, welding, checking and generation for the
  * GoogleTest tests and C++ benchmarks of the algorithm cores.
  *
- * LoadMesh() reads Wavefront OBJ and PLY through OpenMesh's readers (issue 10,
- * item 4): an OpenMesh::IO::BaseImporter collects the points and faces into
+ * LoadMesh() reads Wavefront OBJ and PLY through OpenMesh's readers: an
+ * OpenMesh::IO::BaseImporter collects the points and faces into
  * plain arrays (no halfedge mesh, so non-manifold input, duplicate and unused
  * points stay exactly as in the file; polygons are fan-triangulated).
  *
- * Precision: OpenMesh 9's readers are single precision (measured with
- * libopenmesh-dev 9.0: its OBJ reader parses floats and calls
+ * Precision: OpenMesh 9's readers are single precision (libopenmesh-dev
+ * 9.0: its OBJ reader parses floats and calls
  * add_vertex(Vec3f), its PLY reader calls set_point(Vec3f) even for double
  * properties), so every loaded coordinate is a float: an OBJ coordinate is
- * the file's decimal rounded to float (on the shared OBJ meshes 90-99.99% of
- * the coordinates differ from the double parse, by at most 5.9e-8 relative),
- * igea's float coordinates are unchanged. A coordinate beyond float range is
+ * the file's decimal rounded to float (docs/testing.md says how far that
+ * moves the shared meshes), igea's float coordinates are unchanged. A coordinate beyond float range is
  * an error. Testing/Core/Mesh/TestMeshIOLoaders.cxx pins the loaded meshes
  * (counts, bounding boxes, coordinate and triangle hashes) and these facts.
  *
