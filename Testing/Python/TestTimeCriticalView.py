@@ -1,9 +1,8 @@
 #!/usr/bin/python3
 # SPDX-License-Identifier: BSD-3-Clause
 """The Time-Critical Render View of the ParaView plugin in whole sessions,
-through paraview.simple: selection against a Render View, and a state file
-saved and loaded. The view's and the representations' own tests are in
-Testing/Plugin/Views/Test<Class>.py.
+through paraview.simple: a state file saved and loaded. The view's and the
+representations' own tests are in Testing/Plugin/Views/Test<Class>.py.
 
 Runs under pvbatch (`pvbatch --force-offscreen-rendering TestTimeCriticalView.py`).
 
@@ -30,30 +29,6 @@ OUT = output_dir("view")
 class TimeCriticalViewTests(ViewTests, unittest.TestCase):
     def setUp(self):
         self.created = []
-
-    def test_cell_selection_matches_a_render_view(self):
-        """Area selection picks the same input cells as in a Render View."""
-        source = self.new(sphere(60))
-
-        def selected(view):
-            self.new(Show(source, view))
-            view.CameraPosition = [0.0, 0.0, 3.0]
-            view.CameraFocalPoint = [0.0, 0.0, 0.0]
-            view.CameraViewUp = [0.0, 1.0, 0.0]
-            Render(view)
-            SelectSurfaceCells(Rectangle=[200, 140, 280, 220], View=view, Modifier=None)
-            extract = self.new(ExtractSelection(Input=source))
-            cells = self.fetch(extract)
-            ClearSelection(source)
-            ids = cells.GetCellData().GetArray("vtkOriginalCellIds")
-            self.assertIsNotNone(ids)
-            return sorted(int(ids.GetValue(i)) for i in range(ids.GetNumberOfTuples()))
-
-        reference = self.new_view("RenderView")
-        expected = selected(reference)
-        got = selected(self.view())
-        self.assertGreater(len(expected), 20)
-        self.assertEqual(got, expected)
 
     def test_state_file_round_trip(self):
         view = self.view(TargetFrameTime=42, ShowStatistics=1, Policy="Feedback")

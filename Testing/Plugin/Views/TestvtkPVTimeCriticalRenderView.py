@@ -2,7 +2,8 @@
 # SPDX-License-Identifier: BSD-3-Clause
 """vtkPVTimeCriticalRenderView, the Time-Critical Render View of the ParaView
 plugin, through paraview.simple: its renderer, properties and their checks,
-still and interactive renders, screenshots, statistics and the resolution map.
+still and interactive renders, screenshots, cell selection against a Render
+View, statistics and the resolution map.
 
 Runs under pvbatch (`pvbatch --force-offscreen-rendering TestvtkPVTimeCriticalRenderView.py`).
 
@@ -12,7 +13,7 @@ and Testing/Python (timecritical_testing), TIMECRITICAL_TEST_OUTPUT_DIR for
 scratch files.
 """
 
-import os  # noqa: F401
+import os
 import sys
 import unittest
 
@@ -23,7 +24,7 @@ from paraview.simple import *  # noqa: F401,F403
 import timecritical  # noqa: F401  (wraps the renderer and mapper the view returns)
 from timecritical import TimeCriticalViews  # noqa: F401  (the view and representation classes)
 
-from timecritical_testing import (VIEW_SIZE, ViewTests, leaf_mapper, load_plugin,  # noqa: E402,F401
+from timecritical_testing import (VIEW_SIZE, ViewTests, leaf_mapper, load_plugin,  # noqa: E402
                                   output_dir, screenshot, sphere)
 
 load_plugin(globals(), ["BuildTotallyOrderedMesh"])
@@ -159,6 +160,30 @@ class vtkPVTimeCriticalRenderViewTests(ViewTests, unittest.TestCase):
         # The text is drawn in the upper left corner.
         corner = (slice(0, VIEW_SIZE[1] // 5), slice(0, VIEW_SIZE[0] // 2))
         self.assertGreater(np.count_nonzero(image[corner] != plain[corner]), 100)
+
+    def test_cell_selection_matches_a_render_view(self):
+        """Area selection picks the same input cells as in a Render View."""
+        source = self.new(sphere(60))
+
+        def selected(view):
+            self.new(Show(source, view))
+            view.CameraPosition = [0.0, 0.0, 3.0]
+            view.CameraFocalPoint = [0.0, 0.0, 0.0]
+            view.CameraViewUp = [0.0, 1.0, 0.0]
+            Render(view)
+            SelectSurfaceCells(Rectangle=[200, 140, 280, 220], View=view, Modifier=None)
+            extract = self.new(ExtractSelection(Input=source))
+            cells = self.fetch(extract)
+            ClearSelection(source)
+            ids = cells.GetCellData().GetArray("vtkOriginalCellIds")
+            self.assertIsNotNone(ids)
+            return sorted(int(ids.GetValue(i)) for i in range(ids.GetNumberOfTuples()))
+
+        reference = self.new_view("RenderView")
+        expected = selected(reference)
+        got = selected(self.view())
+        self.assertGreater(len(expected), 20)
+        self.assertEqual(got, expected)
 
     def test_color_by_resolution(self):
         view = self.view(TargetFrameTime=5, FullResolutionAtRest=0)

@@ -13,7 +13,6 @@ and Testing/Python (timecritical_testing), TIMECRITICAL_TEST_OUTPUT_DIR for
 scratch files.
 """
 
-import os  # noqa: F401
 import sys
 import unittest
 
@@ -22,8 +21,7 @@ from paraview.simple import *  # noqa: F401,F403
 import timecritical  # noqa: F401  (wraps the renderer and mapper the view returns)
 from timecritical import TimeCriticalViews  # noqa: F401  (the view and representation classes)
 
-from timecritical_testing import (VIEW_SIZE, ViewTests, leaf_mapper, load_plugin,  # noqa: E402,F401
-                                  output_dir, screenshot, sphere)
+from timecritical_testing import ViewTests, leaf_mapper, load_plugin, sphere  # noqa: E402
 
 load_plugin(globals(), ["BuildTotallyOrderedMesh"])
 
@@ -31,7 +29,6 @@ load_plugin(globals(), ["BuildTotallyOrderedMesh"])
 def address(vtk_object):
     """The identity of a VTK object (one C++ object may get several Python wrappers)."""
     return vtk_object.GetAddressAsString("vtkObject") if vtk_object is not None else None
-OUT = output_dir("TestvtkTimeCriticalCompositeRepresentation")
 
 
 class vtkTimeCriticalCompositeRepresentationTests(ViewTests, unittest.TestCase):

@@ -13,7 +13,6 @@ and Testing/Python (timecritical_testing), TIMECRITICAL_TEST_OUTPUT_DIR for
 scratch files.
 """
 
-import os  # noqa: F401
 import sys
 import unittest
 
@@ -24,8 +23,8 @@ from paraview.simple import *  # noqa: F401,F403
 import timecritical  # noqa: F401  (wraps the renderer and mapper the view returns)
 from timecritical import TimeCriticalViews  # noqa: F401  (the view and representation classes)
 
-from timecritical_testing import (VIEW_SIZE, ViewTests, leaf_mapper, load_plugin,  # noqa: E402,F401
-                                  output_dir, screenshot, sphere)
+from timecritical_testing import (ViewTests, leaf_mapper, load_plugin, output_dir,  # noqa: E402
+                                  screenshot, sphere)
 
 load_plugin(globals(), ["BuildTotallyOrderedMesh"])
 OUT = output_dir("TestvtkTimeCriticalSurfaceRepresentation")
