@@ -671,10 +671,10 @@ class BuilderOptions(unittest.TestCase):
                                    msg="outline changed at resolution %g" % resolution)
 
     def test_feature_edge_settings(self):
-        # LockFeatureEdges and FeatureWeight reach the core (as in TestTOMFilters'
-        # FeatureEdgeSettingsReachTheCore): on a cube with bumpy faces each
-        # changes the TOM; weight 0 gives the TOM of PreserveFeatureEdges off;
-        # a lock ignores the weight.
+        # LockFeatureEdges and FeatureWeight reach the core (as in
+        # TestvtkCollapseHierarchyBuilder's FeatureEdgeSettingsReachTheCore):
+        # on a cube with bumpy faces each changes the TOM; weight 0 gives the
+        # TOM of PreserveFeatureEdges off; a lock ignores the weight.
         cube = noisy_cube()
 
         def tom(**options):

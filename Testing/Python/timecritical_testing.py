@@ -48,7 +48,7 @@ def noisy_cube(n=8, noise=0.6 / 8):
     that its 12 edges are 90-degree creases of one closed surface; every
     face-interior point moves off its face by a fixed pseudo-random amount in
     [-noise/2, noise/2], so that the collapse order depends on how the creases
-    are held (the C++ tests' NoisyCube, TestTOMFilters.cxx)."""
+    are held (the C++ tests' NoisyCube, TestvtkCollapseHierarchyBuilder.cxx)."""
     from vtkmodules.vtkCommonCore import vtkPoints
     from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkPolyData
     ids = {}
@@ -122,3 +122,45 @@ class ProxyTests:
         data = servermanager.Fetch(proxy)
         self.assertIsNotNone(data)
         return data
+
+
+# The Time-Critical Render View's tests (Testing/Python and Testing/Plugin/Views).
+
+VIEW_SIZE = [480, 360]
+
+
+def sphere(resolution=200, center=(0, 0, 0)):
+    """A paraview.simple Sphere source of resolution x resolution."""
+    from paraview.simple import Sphere
+    return Sphere(ThetaResolution=resolution, PhiResolution=resolution, Center=list(center))
+
+
+def screenshot(view, folder, name):
+    """Saves a VIEW_SIZE screenshot of view as folder/name and returns its pixels."""
+    from paraview.simple import SaveScreenshot
+    path = os.path.join(folder, name)
+    SaveScreenshot(path, view, ImageResolution=VIEW_SIZE)
+    return read_png(path)
+
+
+def leaf_mapper(view):
+    """The multiresolution mapper of the first object the view's renderer drew."""
+    renderer = view.GetClientSideObject().GetRenderer()
+    return renderer.GetObjectActor(0).GetMapper()
+
+
+class ViewTests(ProxyTests):
+    """ProxyTests with view(): a new Time-Critical Render View of VIEW_SIZE
+    without orientation axes, with the given properties set."""
+
+    def view(self, **properties):
+        return self.new_view("TimeCriticalRenderView", **properties)
+
+    def new_view(self, xml_name, **properties):
+        from paraview.simple import CreateView
+        view = self.new(CreateView(xml_name))
+        view.ViewSize = VIEW_SIZE
+        view.OrientationAxesVisibility = 0
+        for key, value in properties.items():
+            setattr(view, key, value)
+        return view

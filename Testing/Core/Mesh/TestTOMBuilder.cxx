@@ -3,7 +3,7 @@
 // validator as well as through it), the geometric guarantees (boundaries and
 // sharp edges kept, no flipped triangles, coarsest meshes), bad inputs,
 // progress and abort, determinism, the real meshes of the shared folder, and
-// their quality (dense Hausdorff distance, SurfaceDistance, tested here too).
+// their quality (dense Hausdorff distance, measured with SurfaceDistance.h).
 #include "SurfaceDistance.h"
 #include "TOMBuilder.h"
 #include "TOMMesh.h"
@@ -1104,115 +1104,6 @@ TEST(TOMBuilderSharedData, CowHomerSpot)
 TEST(TOMBuilderSharedData, IgeaTriangleStrips)
 {
   CheckSharedMesh("igea.ply", 0, 16);
-}
-
-//------------------------------------------------------------------------------
-// SurfaceDistance, the measure of the quality tests below and of TOMBenchmark.
-
-namespace
-{
-/// Squared distance from p to the nearest of the triangles, by brute force.
-double BruteForceDistance2(const TriangleMesh& mesh, const double p[3])
-{
-  double best = std::numeric_limits<double>::infinity();
-  for (size_t t = 0; t < mesh.NumberOfTriangles(); ++t)
-  {
-    TriangleMesh one;
-    for (int c = 0; c < 3; ++c)
-    {
-      const double* q = &mesh.Points[3 * size_t(mesh.Triangles[3 * t + c])];
-      one.Points.insert(one.Points.end(), q, q + 3);
-    }
-    one.Triangles = { 0, 1, 2 };
-    const SurfaceLocator locator(one.Points.data(), one.Triangles.data(), 1);
-    uint32_t hint = 0;
-    best = std::min(best, locator.SquaredDistance(p, hint));
-  }
-  return best;
-}
-}
-
-TEST(SurfaceDistance, PointTriangleRegions)
-{
-  // Each Voronoi region of the triangle (0,0,0), (1,0,0), (0,1,0).
-  const std::vector<double> points = { 0, 0, 0, 1, 0, 0, 0, 1, 0 };
-  const std::vector<uint32_t> triangle = { 0, 1, 2 };
-  const SurfaceLocator locator(points.data(), triangle.data(), 1);
-  const struct
-  {
-    double P[3];
-    double Distance;
-  } cases[] = {
-    { { 0.2, 0.2, 1.0 }, 1.0 },                   // above the face
-    { { 0.2, 0.2, -0.5 }, 0.5 },                  // below it
-    { { -1.0, -1.0, 0.0 }, std::sqrt(2.0) },      // beyond corner 0
-    { { 2.0, 0.0, 1.0 }, std::sqrt(2.0) },        // beyond corner 1
-    { { 0.0, 3.0, 0.0 }, 2.0 },                   // beyond corner 2
-    { { 0.5, -1.0, 0.0 }, 1.0 },                  // beyond edge 0-1
-    { { -2.0, 0.5, 0.0 }, 2.0 },                  // beyond edge 0-2
-    { { 1.0, 1.0, 0.0 }, std::sqrt(0.5) },        // beyond edge 1-2
-    { { 0.25, 0.25, 0.0 }, 0.0 },                 // on the face
-  };
-  for (const auto& c : cases)
-  {
-    uint32_t hint = 0;
-    EXPECT_NEAR(std::sqrt(locator.SquaredDistance(c.P, hint)), c.Distance, 1e-12)
-      << c.P[0] << " " << c.P[1] << " " << c.P[2];
-  }
-  const SurfaceLocator empty(points.data(), triangle.data(), 0);
-  uint32_t hint = 0;
-  EXPECT_TRUE(std::isinf(empty.SquaredDistance(cases[0].P, hint)));
-}
-
-TEST(SurfaceDistance, TreeAgreesWithBruteForce)
-{
-  // A noisy torus and points around it, some far away; any hint.
-  const TriangleMesh torus = timecritical::testing::MakeTorus(24, 12, 3);
-  const SurfaceLocator locator(torus.Points.data(), torus.Triangles.data(), torus.NumberOfTriangles());
-  ASSERT_EQ(locator.GetNumberOfTriangles(), torus.NumberOfTriangles());
-  uint32_t state = 1u;
-  auto next = [&state]() {
-    state = state * 1664525u + 1013904223u;
-    return static_cast<double>(state >> 8) / double(1u << 24);
-  };
-  uint32_t hint = 12345;
-  for (int i = 0; i < 300; ++i)
-  {
-    const double scale = i % 10 == 0 ? 20.0 : 3.0;
-    const double p[3] = { scale * (next() - 0.5), scale * (next() - 0.5), scale * (next() - 0.5) };
-    ASSERT_EQ(locator.SquaredDistance(p, hint), BruteForceDistance2(torus, p)) << i;
-  }
-}
-
-TEST(SurfaceDistance, SamplesAndHausdorffOfAShiftedSheet)
-{
-  // One triangle with k divisions: 3 corners and the (k+1)(k+2)/2 - 3 other
-  // grid points, plus the centroid when k < 3.
-  const std::vector<double> points = { 0, 0, 0, 1, 0, 0, 0, 1, 0 };
-  const std::vector<uint32_t> triangle = { 0, 1, 2 };
-  EXPECT_EQ(SampleSurface(points.data(), 3, triangle.data(), 1, 0.0, 1).size(), 3u * 4);
-  EXPECT_EQ(SampleSurface(points.data(), 3, triangle.data(), 1, 0.0, 2).size(), 3u * 7);
-  // The longest edge is sqrt(2): spacing 0.36 gives k = 4, 15 grid points.
-  EXPECT_EQ(SampleSurface(points.data(), 3, triangle.data(), 1, 0.36, 1).size(), 3u * 15);
-  EXPECT_NEAR(MeanEdgeLength(points.data(), triangle.data(), 1), (2.0 + std::sqrt(2.0)) / 3, 1e-15);
-
-  // A grid and a coarser copy lifted by 0.1 over part of it: 0.1 apart.
-  const TriangleMesh fine = timecritical::testing::MakeGrid(16, 16);
-  TriangleMesh lifted = timecritical::testing::MakeGrid(4, 4);
-  for (size_t i = 0; i < lifted.NumberOfPoints(); ++i)
-  {
-    lifted.Points[3 * i + 2] = lifted.Points[3 * i] > 0.5 ? 0.1 : 0.0;
-  }
-  const SurfaceLocator toFine(fine.Points.data(), fine.Triangles.data(), fine.NumberOfTriangles());
-  const SurfaceLocator toLifted(
-    lifted.Points.data(), lifted.Triangles.data(), lifted.NumberOfTriangles());
-  const std::vector<double> fineSamples = SampleSurface(
-    fine.Points.data(), fine.NumberOfPoints(), fine.Triangles.data(), fine.NumberOfTriangles(), 0.0, 2);
-  const std::vector<double> liftedSamples = SampleSurface(lifted.Points.data(),
-    lifted.NumberOfPoints(), lifted.Triangles.data(), lifted.NumberOfTriangles(), 0.02, 1);
-  EXPECT_NEAR(MaximumDistance(liftedSamples, toFine), 0.1, 1e-12);
-  EXPECT_NEAR(MaximumDistance(fineSamples, toLifted), 0.1, 1e-12);
-  EXPECT_LT(MaximumDistance(fineSamples, toFine), 1e-15); // grid points on the grid
 }
 
 //------------------------------------------------------------------------------

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// Image baselines of TOM resolutions, rendered two ways: vtkTOMPolyDataMapper
-// (index buffer from the traversal core) and vtkExtractTOMResolution feeding
-// VTK's own mapper. Both must match the same baseline.
+// Tests of vtkTOMPolyDataMapper: image baselines of TOM resolutions, rendered
+// two ways, by vtkTOMPolyDataMapper (index buffer from the traversal core) and
+// by vtkExtractTOMResolution feeding VTK's own mapper; both must match the same
+// baseline. Then the thresholds' sensitivity, and non-TOM input.
 //
 // Thresholds: a channel value differing by more than 0.05 (13 of 255 levels)
 // counts as failing; at most 0.1% of channel values may fail and the RMS must
