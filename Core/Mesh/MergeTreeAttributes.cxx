@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "MergeTreeAttributes.h"
 
-#include "CollapseEngine.h"
+#include "ScratchBlocks.h"
+#include "TOMBuildOptions.h" // for MaximumCoordinateMagnitude
 #include "TOMMesh.h"
 #include "TOMValidator.h"
 
