@@ -240,52 +240,47 @@ void CollapseEngine::Reevaluate(uint32_t v, bool prefetch)
 }
 
 //------------------------------------------------------------------------------
-bool CollapseEngine::CheckCollapse(uint32_t u, uint32_t w)
+inline void CollapseEngine::PrefetchFans(uint32_t u, uint32_t w)
 {
-  if (w == Invalid || w == u || this->IsRemoved(w) || this->Parked(u) || this->Parked(w))
-  {
-    return false;
-  }
-  const uint32_t base = this->NextStampBase();
-
   // Batch the memory accesses (the greedy order jumps around the mesh): all
   // triangles of both fans, then all their corners, so that the cache misses
   // overlap instead of queueing behind one another.
+  const Vertex& ru = this->Vertices[u];
+  const Vertex& rw = this->Vertices[w];
+  const uint32_t* lu = this->Pool.data() + ru.AdjStart;
+  const uint32_t* lw = this->Pool.data() + rw.AdjStart;
+  this->Visited += ru.AdjCount + rw.AdjCount;
+  for (uint32_t i = 0; i < ru.AdjCount; ++i)
   {
-    const Vertex& ru = this->Vertices[u];
-    const Vertex& rw = this->Vertices[w];
-    const uint32_t* lu = this->Pool.data() + ru.AdjStart;
-    const uint32_t* lw = this->Pool.data() + rw.AdjStart;
-    this->Visited += ru.AdjCount + rw.AdjCount;
-    for (uint32_t i = 0; i < ru.AdjCount; ++i)
-    {
-      Prefetch(&this->Tris[lu[i] >> 2]);
-    }
-    for (uint32_t i = 0; i < rw.AdjCount; ++i)
-    {
-      Prefetch(&this->Tris[lw[i] >> 2]);
-    }
-    for (uint32_t i = 0; i < ru.AdjCount; ++i)
-    {
-      const Tri& tri = this->Tris[lu[i] >> 2];
-      const uint32_t j = lu[i] & 3u;
-      Prefetch(&this->Vertices[tri.V[Next3(j)]]);
-      Prefetch(&this->Vertices[tri.V[Prev3(j)]]);
-    }
-    for (uint32_t i = 0; i < rw.AdjCount; ++i)
-    {
-      const Tri& tri = this->Tris[lw[i] >> 2];
-      const uint32_t j = lw[i] & 3u;
-      Prefetch(&this->Vertices[tri.V[Next3(j)]]);
-      Prefetch(&this->Vertices[tri.V[Prev3(j)]]);
-    }
+    Prefetch(&this->Tris[lu[i] >> 2]);
   }
+  for (uint32_t i = 0; i < rw.AdjCount; ++i)
+  {
+    Prefetch(&this->Tris[lw[i] >> 2]);
+  }
+  for (uint32_t i = 0; i < ru.AdjCount; ++i)
+  {
+    const Tri& tri = this->Tris[lu[i] >> 2];
+    const uint32_t j = lu[i] & 3u;
+    Prefetch(&this->Vertices[tri.V[Next3(j)]]);
+    Prefetch(&this->Vertices[tri.V[Prev3(j)]]);
+  }
+  for (uint32_t i = 0; i < rw.AdjCount; ++i)
+  {
+    const Tri& tri = this->Tris[lw[i] >> 2];
+    const uint32_t j = lw[i] & 3u;
+    Prefetch(&this->Vertices[tri.V[Next3(j)]]);
+    Prefetch(&this->Vertices[tri.V[Prev3(j)]]);
+  }
+}
 
-  // Link condition. Neighbours of u are marked; the opposite corners of the
-  // triangles shared with w are the only common neighbours allowed.
-  uint32_t trisU = 0, distinctU = 0, shared = 0;
+//------------------------------------------------------------------------------
+inline void CollapseEngine::MarkLinkOfU(uint32_t u, uint32_t w, uint32_t base, LinkCount& link)
+{
+  // Neighbours of u are marked; the opposite corners of the triangles shared
+  // with w are the only common neighbours allowed.
   this->ForEachLiveTriangle(u, [&](const Tri& tri, uint32_t j) {
-    ++trisU;
+    ++link.Triangles;
     const uint32_t a = tri.V[Next3(j)];
     const uint32_t b = tri.V[Prev3(j)];
     uint32_t& ma = this->Vertices[a].Mark;
@@ -293,37 +288,122 @@ bool CollapseEngine::CheckCollapse(uint32_t u, uint32_t w)
     if ((ma & ~MarkBits) != base)
     {
       ma = base;
-      ++distinctU;
+      ++link.Neighbours;
     }
     if ((mb & ~MarkBits) != base)
     {
       mb = base;
-      ++distinctU;
+      ++link.Neighbours;
     }
     ma |= MarkU;
     mb |= MarkU;
     if (a == w)
     {
       mb |= MarkAllowed;
-      ++shared;
+      ++link.Shared;
     }
     else if (b == w)
     {
       ma |= MarkAllowed;
-      ++shared;
+      ++link.Shared;
     }
   });
-  if (shared == 0)
-  {
-    return false; // no longer adjacent (stale target)
-  }
+}
 
-  // Geometry of the triangles that survive around u, and duplicates.
+//------------------------------------------------------------------------------
+inline bool CollapseEngine::WouldDuplicate(uint32_t w, uint32_t a, uint32_t b)
+{
+  // (u, a, b) becomes (w, a, b): a duplicate if w already has a triangle on a and b.
+  const uint32_t* listW = this->Pool.data() + this->Vertices[w].AdjStart;
+  this->Visited += this->Vertices[w].AdjCount;
+  for (uint32_t k = 0; k < this->Vertices[w].AdjCount; ++k)
+  {
+    const Tri& other = this->Tris[listW[k] >> 2];
+    if (!(other.Flags & DeadFlag) && other.Has(a) && other.Has(b))
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
+namespace
+{
+/// The geometric checks of a collapse at the current relaxation level.
+struct SurvivorChecks
+{
+  bool Normal;       // no normal may turn by more than the maximum deviation
+  bool Sliver;       // no sliver may appear (or get worse)
+  double CosMax;     // cosine of the maximum normal deviation
+  double MinQuality; // the sliver threshold
+};
+
+/// Whether triangle (u, a, b) may become (w, a, b): not (nearly) zero area,
+/// its normal not turned too far, not made a sliver.
+inline bool SurvivorAcceptable(
+  const Vec3& pu, const Vec3& pw, const Vec3& pa, const Vec3& pb, const SurvivorChecks& checks)
+{
+  const Vec3 ea = Sub(pa, pw);
+  const Vec3 eb = Sub(pb, pw);
+  const Vec3 nNew = Cross(ea, eb);
+  const double lenNew = Dot(nNew, nNew);
+  const double la = Dot(ea, ea), lb = Dot(eb, eb);
+  // Reject (nearly) zero-area results: sine of the corner angle below 1e-8.
+  if (!(lenNew > 1e-16 * la * lb))
+  {
+    return false;
+  }
+  const Vec3 nOld = Cross(Sub(pa, pu), Sub(pb, pu));
+  const double lenOld = Dot(nOld, nOld);
+  if (checks.Normal && lenOld > 0.0)
+  {
+    const double d = Dot(nOld, nNew);
+    const double cosMax = checks.CosMax;
+    if (cosMax >= 0.0)
+    {
+      if (!(d > 0.0) || d * d < cosMax * cosMax * lenOld * lenNew)
+      {
+        return false;
+      }
+    }
+    else if (d < cosMax * std::sqrt(lenOld * lenNew))
+    {
+      return false;
+    }
+  }
+  if (checks.Sliver)
+  {
+    // Quality 4 sqrt(3) area / sum of squared edge lengths (Xia et al., eq. 3);
+    // reject only when the collapse makes the triangle a sliver (or a worse one).
+    const Vec3 ab = Sub(pa, pb);
+    const double lab = Dot(ab, ab);
+    const double qNew = 2.0 * std::sqrt(3.0) * std::sqrt(lenNew) / (la + lb + lab);
+    if (qNew < checks.MinQuality)
+    {
+      const Vec3 fa = Sub(pa, pu), fb = Sub(pb, pu);
+      const double qOld =
+        2.0 * std::sqrt(3.0) * std::sqrt(lenOld) / (Dot(fa, fa) + Dot(fb, fb) + lab);
+      if (qNew < qOld)
+      {
+        return false;
+      }
+    }
+  }
+  return true;
+}
+}
+
+//------------------------------------------------------------------------------
+inline bool CollapseEngine::SurvivorsStayValid(uint32_t u, uint32_t w, uint32_t base)
+{
+  // The triangles that survive around u (those on the edge die): no
+  // duplicates, and at the geometric levels, acceptable geometry.
   const bool geometric = this->CurrentLevel < LevelTopologyOnly;
-  const bool normalCheck = geometric && this->NormalCheckEnabled;
-  const bool sliverCheck = this->CurrentLevel == LevelAll && this->SliverCheckEnabled;
-  const double cosMax = this->CosMaxDeviation;
-  const double minQuality = this->Options.MinimumTriangleQuality;
+  SurvivorChecks checks;
+  checks.Normal = geometric && this->NormalCheckEnabled;
+  checks.Sliver = this->CurrentLevel == LevelAll && this->SliverCheckEnabled;
+  checks.CosMax = this->CosMaxDeviation;
+  checks.MinQuality = this->Options.MinimumTriangleQuality;
   const Vec3 pu = this->Vertices[u].P;
   const Vec3 pw = this->Vertices[w].P;
   const uint32_t* listU = this->Pool.data() + this->Vertices[u].AdjStart;
@@ -341,90 +421,40 @@ bool CollapseEngine::CheckCollapse(uint32_t u, uint32_t w)
     }
     const Vertex& va = this->Vertices[a];
     const Vertex& vb = this->Vertices[b];
-    if ((va.Mark & ~MarkU & ~MarkW) == allowed && (vb.Mark & ~MarkU & ~MarkW) == allowed)
-    {
-      // (u, a, b) becomes (w, a, b): a duplicate if w already has a triangle on a and b.
-      const uint32_t* listW = this->Pool.data() + this->Vertices[w].AdjStart;
-      this->Visited += this->Vertices[w].AdjCount;
-      for (uint32_t k = 0; k < this->Vertices[w].AdjCount; ++k)
-      {
-        const Tri& other = this->Tris[listW[k] >> 2];
-        if (!(other.Flags & DeadFlag) && other.Has(a) && other.Has(b))
-        {
-          return false;
-        }
-      }
-    }
-    if (!geometric)
-    {
-      continue;
-    }
-    const Vec3 ea = Sub(va.P, pw);
-    const Vec3 eb = Sub(vb.P, pw);
-    const Vec3 nNew = Cross(ea, eb);
-    const double lenNew = Dot(nNew, nNew);
-    const double la = Dot(ea, ea), lb = Dot(eb, eb);
-    // Reject (nearly) zero-area results: sine of the corner angle below 1e-8.
-    if (!(lenNew > 1e-16 * la * lb))
+    if ((va.Mark & ~MarkU & ~MarkW) == allowed && (vb.Mark & ~MarkU & ~MarkW) == allowed &&
+      this->WouldDuplicate(w, a, b))
     {
       return false;
     }
-    const Vec3 nOld = Cross(Sub(va.P, pu), Sub(vb.P, pu));
-    const double lenOld = Dot(nOld, nOld);
-    if (normalCheck && lenOld > 0.0)
+    if (geometric && !SurvivorAcceptable(pu, pw, va.P, vb.P, checks))
     {
-      const double d = Dot(nOld, nNew);
-      if (cosMax >= 0.0)
-      {
-        if (!(d > 0.0) || d * d < cosMax * cosMax * lenOld * lenNew)
-        {
-          return false;
-        }
-      }
-      else if (d < cosMax * std::sqrt(lenOld * lenNew))
-      {
-        return false;
-      }
-    }
-    if (sliverCheck)
-    {
-      // Quality 4 sqrt(3) area / sum of squared edge lengths (Xia et al., eq. 3);
-      // reject only when the collapse makes the triangle a sliver (or a worse one).
-      const Vec3 ab = Sub(va.P, vb.P);
-      const double lab = Dot(ab, ab);
-      const double qNew = 2.0 * std::sqrt(3.0) * std::sqrt(lenNew) / (la + lb + lab);
-      if (qNew < minQuality)
-      {
-        const Vec3 fa = Sub(va.P, pu), fb = Sub(vb.P, pu);
-        const double qOld =
-          2.0 * std::sqrt(3.0) * std::sqrt(lenOld) / (Dot(fa, fa) + Dot(fb, fb) + lab);
-        if (qNew < qOld)
-        {
-          return false;
-        }
-      }
+      return false;
     }
   }
+  return true;
+}
 
-  // Link condition, second half (after the geometry, which fails more often
-  // on rough surfaces and does not need w's fan): the neighbours of w.
-  uint32_t trisW = 0, distinctW = 0;
+//------------------------------------------------------------------------------
+inline bool CollapseEngine::LinkOfWAllowed(uint32_t u, uint32_t w, uint32_t base, LinkCount& link)
+{
+  // The neighbours of w: none may be a neighbour of u off the edge (a
+  // common neighbour other than the opposite corners would pinch).
   bool ok = true;
   this->ForEachLiveTriangle(w, [&](const Tri& tri, uint32_t j) {
-    ++trisW;
+    ++link.Triangles;
     for (uint32_t x : { tri.V[Next3(j)], tri.V[Prev3(j)] })
     {
       uint32_t& m = this->Vertices[x].Mark;
       if ((m & ~MarkBits) != base)
       {
         m = base | MarkW; // not a neighbour of u
-        ++distinctW;
+        ++link.Neighbours;
         continue;
       }
       if (!(m & MarkW))
       {
         m |= MarkW;
-        ++distinctW;
+        ++link.Neighbours;
       }
       if ((m & (MarkU | MarkAllowed)) == MarkU && x != u)
       {
@@ -432,13 +462,42 @@ bool CollapseEngine::CheckCollapse(uint32_t u, uint32_t w)
       }
     }
   });
-  if (!ok)
+  return ok;
+}
+
+//------------------------------------------------------------------------------
+bool CollapseEngine::CheckCollapse(uint32_t u, uint32_t w)
+{
+  if (w == Invalid || w == u || this->IsRemoved(w) || this->Parked(u) || this->Parked(w))
+  {
+    return false;
+  }
+  const uint32_t base = this->NextStampBase();
+  this->PrefetchFans(u, w);
+
+  // Link condition, first half: the neighbours of u.
+  LinkCount linkU;
+  this->MarkLinkOfU(u, w, base, linkU);
+  if (linkU.Shared == 0)
+  {
+    return false; // no longer adjacent (stale target)
+  }
+  // Geometry of the triangles that survive around u, and duplicates.
+  if (!this->SurvivorsStayValid(u, w, base))
+  {
+    return false;
+  }
+  // Link condition, second half (after the geometry, which fails more often
+  // on rough surfaces and does not need w's fan): the neighbours of w.
+  LinkCount linkW;
+  if (!this->LinkOfWAllowed(u, w, base, linkW))
   {
     return false;
   }
   // The collapse must leave something behind (a lone triangle, or a fan of
   // triangles all around the edge, would vanish entirely).
-  if (trisU + trisW <= 2 * shared)
+  const uint32_t shared = linkU.Shared;
+  if (linkU.Triangles + linkW.Triangles <= 2 * shared)
   {
     return false;
   }
@@ -446,7 +505,7 @@ bool CollapseEngine::CheckCollapse(uint32_t u, uint32_t w)
   // boundary edge): two boundary vertices may only merge along a boundary
   // edge, otherwise the surface pinches. An open fan has one neighbour more
   // than triangles.
-  if (distinctU > trisU && distinctW > trisW && shared != 1)
+  if (linkU.Neighbours > linkU.Triangles && linkW.Neighbours > linkW.Triangles && shared != 1)
   {
     return false;
   }
@@ -454,44 +513,45 @@ bool CollapseEngine::CheckCollapse(uint32_t u, uint32_t w)
 }
 
 //------------------------------------------------------------------------------
-void CollapseEngine::ApplyCollapse(uint32_t u, uint32_t w)
+inline void CollapseEngine::RecordStep(uint32_t u, uint32_t w)
 {
-  Vertex& ru = this->Vertices[u];
-  Vertex& rw = this->Vertices[w];
   this->RemovedOrder.push_back(u);
   this->SubstituteOf[u] = w;
   this->KillStart.push_back(static_cast<uint32_t>(this->KillList.size()));
   this->HeapRemove(u);
-  // The next collapse most likely starts from the new top of the heap:
-  // fetch its data while this one is being applied. (Schedules without a
-  // heap see further ahead and prefetch themselves: PrefetchCandidate.)
-  const uint32_t nextTop =
-    this->UseHeap && !this->Heap.Empty() ? this->Heap.Top().Vertex : Invalid;
-  this->PrefetchCollapse(nextTop, 0);
+}
 
+//------------------------------------------------------------------------------
+inline void CollapseEngine::AddToRing(uint32_t x, uint32_t u, uint32_t ringBase)
+{
+  Vertex& rx = this->Vertices[x];
+  if (rx.Mark != ringBase)
+  {
+    rx.Mark = ringBase;
+    this->Ring.push_back(x);
+    Prefetch(&this->Quadrics[x]); // for the update of its candidates (UpdateRing)
+    if ((rx.Target == u || (rx.State & BlockedBit) || rx.Kind == KindCurve) &&
+      rx.LiveCount <= MaximumFanSize)
+    {
+      // Probably re-evaluated: its fan is fetched over this collapse.
+      this->Soon.push_back(x);
+      Prefetch(this->Pool.data() + rx.AdjStart);
+    }
+  }
+}
+
+//------------------------------------------------------------------------------
+inline uint32_t CollapseEngine::MoveFanToTarget(uint32_t u, uint32_t w)
+{
   // Triangles around u: those on the edge die, the others now use w (in the
   // same corner). The check just compacted u's list, so every entry is live.
-  // u's neighbours are gathered on the way: their candidates change.
+  // u's neighbours are gathered on the way (the ring): their candidates change.
+  Vertex& ru = this->Vertices[u];
+  Vertex& rw = this->Vertices[w];
   const uint32_t ringBase = this->NextStampBase();
   this->Ring.clear();
   rw.Mark = ringBase;
   this->Soon.clear();
-  auto addToRing = [&](uint32_t x) {
-    Vertex& rx = this->Vertices[x];
-    if (rx.Mark != ringBase)
-    {
-      rx.Mark = ringBase;
-      this->Ring.push_back(x);
-      Prefetch(&this->Quadrics[x]); // for the update of its candidates below
-      if ((rx.Target == u || (rx.State & BlockedBit) || rx.Kind == KindCurve) &&
-        rx.LiveCount <= MaximumFanSize)
-      {
-        // Probably re-evaluated below: its fan is fetched over this collapse.
-        this->Soon.push_back(x);
-        Prefetch(this->Pool.data() + rx.AdjStart);
-      }
-    }
-  };
   this->Merges.clear();
   uint32_t* listU = this->Pool.data() + ru.AdjStart;
   const uint32_t countU = ru.AdjCount;
@@ -522,43 +582,50 @@ void CollapseEngine::ApplyCollapse(uint32_t u, uint32_t w)
       {
         this->Merges.push_back(x);
       }
-      addToRing(x);
+      this->AddToRing(x, u, ringBase);
       continue;
     }
     tri.V[j] = w;
     listU[survivors++] = entry;
-    addToRing(a);
-    addToRing(b);
+    this->AddToRing(a, u, ringBase);
+    this->AddToRing(b, u, ringBase);
   }
   rw.LiveCount += survivors;
   ru.LiveCount = 0;
   ru.AdjCount = survivors; // u keeps its list until appended (the pool may move)
-  this->PrefetchCollapse(nextTop, 1);
+  return survivors;
+}
 
+//------------------------------------------------------------------------------
+inline void CollapseEngine::AppendSurvivors(uint32_t u, uint32_t w, uint32_t survivors)
+{
   // w's list: drop the dead, append u's survivors.
+  Vertex& ru = this->Vertices[u];
+  Vertex& rw = this->Vertices[w];
+  uint32_t* listW = this->Pool.data() + rw.AdjStart;
+  uint32_t kept = 0;
+  for (uint32_t i = 0; i < rw.AdjCount; ++i)
   {
-    uint32_t* listW = this->Pool.data() + rw.AdjStart;
-    uint32_t kept = 0;
-    for (uint32_t i = 0; i < rw.AdjCount; ++i)
+    if (!(this->Tris[listW[i] >> 2].Flags & DeadFlag))
     {
-      if (!(this->Tris[listW[i] >> 2].Flags & DeadFlag))
-      {
-        listW[kept++] = listW[i];
-      }
+      listW[kept++] = listW[i];
     }
-    rw.AdjCount = kept;
-    this->EnsureCapacity(w, kept + survivors); // may move lists
-    listU = this->Pool.data() + ru.AdjStart;
-    listW = this->Pool.data() + rw.AdjStart;
-    std::copy(listU, listU + survivors, listW + kept);
-    rw.AdjCount = kept + survivors;
-    ru.AdjCount = 0;
   }
-  ru.State |= RemovedBit;
-  if (rw.Kind == KindClosed && ru.Kind != KindClosed)
-  {
-    rw.Kind = KindFree; // w may have inherited an open fan
-  }
+  rw.AdjCount = kept;
+  this->EnsureCapacity(w, kept + survivors); // may move lists
+  const uint32_t* listU = this->Pool.data() + ru.AdjStart;
+  listW = this->Pool.data() + rw.AdjStart;
+  std::copy(listU, listU + survivors, listW + kept);
+  rw.AdjCount = kept + survivors;
+  ru.AdjCount = 0;
+}
+
+//------------------------------------------------------------------------------
+inline void CollapseEngine::KeepMergedConstraintEdges(uint32_t w)
+{
+  // Each wing vertex x in Merges had a constraint edge to u or w that is now
+  // one edge (w, x): flag it in every triangle of w that has it.
+  const Vertex& rw = this->Vertices[w];
   for (uint32_t x : this->Merges)
   {
     this->Visited += rw.AdjCount;
@@ -572,8 +639,11 @@ void CollapseEngine::ApplyCollapse(uint32_t u, uint32_t w)
       }
     }
   }
+}
 
-  this->PrefetchCollapse(nextTop, 2);
+//------------------------------------------------------------------------------
+inline void CollapseEngine::PrefetchSoonTriangles()
+{
   for (uint32_t x : this->Soon)
   {
     const Vertex& rx = this->Vertices[x];
@@ -583,11 +653,29 @@ void CollapseEngine::ApplyCollapse(uint32_t u, uint32_t w)
       Prefetch(&this->Tris[list[i] >> 2]);
     }
   }
+}
 
-  // Quadrics and the error of this step.
+//------------------------------------------------------------------------------
+inline void CollapseEngine::PrefetchSoonNeighbours()
+{
+  for (uint32_t x : this->Soon)
+  {
+    const Vertex& rx = this->Vertices[x];
+    const uint32_t* list = this->Pool.data() + rx.AdjStart;
+    for (uint32_t i = 0; i < rx.AdjCount; ++i)
+    {
+      const Tri& tri = this->Tris[list[i] >> 2];
+      Prefetch(&this->Vertices[tri.V[Next3(list[i] & 3u)]]);
+    }
+  }
+}
+
+//------------------------------------------------------------------------------
+inline void CollapseEngine::MergeQuadrics(uint32_t u, uint32_t w)
+{
   QuadricRecord& qu = this->Quadrics[u];
   QuadricRecord& qw = this->Quadrics[w];
-  LocalQuadric(qu, ru.P).AddTo(qw, rw.P);
+  LocalQuadric(qu, this->Vertices[u].P).AddTo(qw, this->Vertices[w].P);
   SetFaceWeight(qw, qw.FaceWeight + qu.FaceWeight);
   if (qu.Slot != Invalid)
   {
@@ -602,96 +690,95 @@ void CollapseEngine::ApplyCollapse(uint32_t u, uint32_t w)
     }
     qu.Slot = Invalid;
   }
-  {
-    // Reported error: the larger of the mean squared distances to the merged
-    // face planes and to the merged constraint planes (their weights make the
-    // ordering keep boundaries in place, but would distort a distance).
-    const double total = qw.C; // the merged quadric at w itself
-    double constraint = 0.0, e2c = 0.0;
-    if (qw.Slot != Invalid)
-    {
-      const ConstraintRecord& c = this->Constraints[qw.Slot];
-      constraint = c.Q.Evaluate(rw.P);
-      e2c = c.Weight > 0.0 ? constraint / c.Weight : 0.0;
-    }
-    const double face = std::max(total - constraint, 0.0);
-    const double e2 = std::max(qw.FaceWeight > 0.0 ? face / qw.FaceWeight : 0.0, e2c);
-    // Every plane and vertex lies in the unit box, so no distance exceeds its
-    // diagonal: more is rounding (a tiny face weight), which could overflow.
-    this->RunningError =
-      std::max(this->RunningError, std::sqrt(std::min(e2, 3.0)) * this->Scale);
-    this->StepError.push_back(static_cast<float>(this->RunningError));
-  }
+}
 
-  this->PrefetchCollapse(nextTop, 3);
-  for (uint32_t x : this->Soon)
+//------------------------------------------------------------------------------
+inline void CollapseEngine::RecordStepError(uint32_t w)
+{
+  // Reported error: the larger of the mean squared distances to the merged
+  // face planes and to the merged constraint planes (their weights make the
+  // ordering keep boundaries in place, but would distort a distance).
+  const QuadricRecord& qw = this->Quadrics[w];
+  const double total = qw.C; // the merged quadric at w itself
+  double constraint = 0.0, e2c = 0.0;
+  if (qw.Slot != Invalid)
   {
-    const Vertex& rx = this->Vertices[x];
-    const uint32_t* list = this->Pool.data() + rx.AdjStart;
-    for (uint32_t i = 0; i < rx.AdjCount; ++i)
-    {
-      const Tri& tri = this->Tris[list[i] >> 2];
-      Prefetch(&this->Vertices[tri.V[Next3(list[i] & 3u)]]);
-    }
+    const ConstraintRecord& c = this->Constraints[qw.Slot];
+    constraint = c.Q.Evaluate(this->Vertices[w].P);
+    e2c = c.Weight > 0.0 ? constraint / c.Weight : 0.0;
   }
+  const double face = std::max(total - constraint, 0.0);
+  const double e2 = std::max(qw.FaceWeight > 0.0 ? face / qw.FaceWeight : 0.0, e2c);
+  // Every plane and vertex lies in the unit box, so no distance exceeds its
+  // diagonal: more is rounding (a tiny face weight), which could overflow.
+  this->RunningError = std::max(this->RunningError, std::sqrt(std::min(e2, 3.0)) * this->Scale);
+  this->StepError.push_back(static_cast<float>(this->RunningError));
+}
 
+//------------------------------------------------------------------------------
+inline void CollapseEngine::RetargetSurvivor(uint32_t w)
+{
   // w: new quadric and new neighbours, so a fresh best target. Blocked
   // vertices around w are retried, since the legality of their collapses
   // may have changed; around a hub (degenerate input) only when the level
   // ends (Relax): each would come back to the hub's fan at every collapse
-  // into it, O(V^2) per collapse (most of the work on a crumpled fan).
+  // into it, O(V^2) per collapse.
+  Vertex& rw = this->Vertices[w];
   this->Retry.clear();
   const bool retry = rw.LiveCount <= RetryFanSize;
-  {
-    CheapestTarget cheapest(LocalQuadric(qw, rw.P), this->Vertices.data());
-    auto consider = [&cheapest](uint32_t x) { cheapest.Offer(x); };
-    const int kind = this->EffectiveKind(w);
-    this->ForEachLiveTriangle(w, [&](const Tri& tri, uint32_t j) {
-      const uint32_t a = tri.V[Next3(j)];
-      const uint32_t b = tri.V[Prev3(j)];
-      if ((this->Vertices[a].State | this->Vertices[b].State) & BlockedBit)
+  CheapestTarget cheapest(LocalQuadric(this->Quadrics[w], rw.P), this->Vertices.data());
+  auto consider = [&cheapest](uint32_t x) { cheapest.Offer(x); };
+  const int kind = this->EffectiveKind(w);
+  this->ForEachLiveTriangle(w, [&](const Tri& tri, uint32_t j) {
+    const uint32_t a = tri.V[Next3(j)];
+    const uint32_t b = tri.V[Prev3(j)];
+    if ((this->Vertices[a].State | this->Vertices[b].State) & BlockedBit)
+    {
+      if (retry)
       {
-        if (retry)
-        {
-          this->Retry.push_back(a);
-          this->Retry.push_back(b);
-        }
-        else
-        {
-          this->RetrySkipped = true;
-        }
+        this->Retry.push_back(a);
+        this->Retry.push_back(b);
       }
-      if (kind == KindClosed)
+      else
+      {
+        this->RetrySkipped = true;
+      }
+    }
+    // The targets of ForEachAllowedTarget, in the same walk.
+    if (kind == KindClosed)
+    {
+      consider(a);
+    }
+    else if (kind == KindFree)
+    {
+      consider(a);
+      consider(b);
+    }
+    else if (kind == KindCurve)
+    {
+      if ((tri.Flags >> j) & 1u)
       {
         consider(a);
       }
-      else if (kind == KindFree)
+      if ((tri.Flags >> Prev3(j)) & 1u)
       {
-        consider(a);
         consider(b);
       }
-      else if (kind == KindCurve)
-      {
-        if ((tri.Flags >> j) & 1u)
-        {
-          consider(a);
-        }
-        if ((tri.Flags >> Prev3(j)) & 1u)
-        {
-          consider(b);
-        }
-      }
-    });
-    if (this->Parked(w))
-    {
-      this->Park(w); // its fan grew beyond the bound
     }
-    else
-    {
-      this->SetBest(w, cheapest.Best());
-    }
+  });
+  if (this->Parked(w))
+  {
+    this->Park(w); // its fan grew beyond the bound
   }
+  else
+  {
+    this->SetBest(w, cheapest.Best());
+  }
+}
 
+//------------------------------------------------------------------------------
+inline void CollapseEngine::UpdateRing(uint32_t u, uint32_t w)
+{
   // Costs depend only on the source's quadric and the target's position, so
   // of the other vertices only u's former neighbours are affected: they
   // gained w as a target (one evaluation), and those that aimed at u lost
@@ -729,6 +816,11 @@ void CollapseEngine::ApplyCollapse(uint32_t u, uint32_t w)
       this->Reevaluate(x, false);
     }
   }
+}
+
+//------------------------------------------------------------------------------
+inline void CollapseEngine::RetryBlocked()
+{
   for (uint32_t x : this->Retry)
   {
     if ((this->Vertices[x].State & (RemovedBit | BlockedBit)) == BlockedBit)
@@ -736,8 +828,11 @@ void CollapseEngine::ApplyCollapse(uint32_t u, uint32_t w)
       this->Reevaluate(x);
     }
   }
-  this->PrefetchCollapse(nextTop, 4);
+}
 
+//------------------------------------------------------------------------------
+inline void CollapseEngine::RemoveOrphans(uint32_t w)
+{
   // Vertices left without any triangle (only possible around non-manifold
   // configurations) disappear right away, substituted with w.
   while (!this->Orphans.empty())
@@ -749,6 +844,44 @@ void CollapseEngine::ApplyCollapse(uint32_t u, uint32_t w)
       this->RemoveOrphan(x, w);
     }
   }
+}
+
+//------------------------------------------------------------------------------
+void CollapseEngine::ApplyCollapse(uint32_t u, uint32_t w)
+{
+  this->RecordStep(u, w);
+  // The next collapse most likely starts from the new top of the heap:
+  // fetch its data while this one is being applied, in stages between the
+  // steps. (Schedules without a heap see further ahead and prefetch
+  // themselves: PrefetchCandidate.)
+  const uint32_t nextTop =
+    this->UseHeap && !this->Heap.Empty() ? this->Heap.Top().Vertex : Invalid;
+  this->PrefetchCollapse(nextTop, 0);
+
+  const uint32_t survivors = this->MoveFanToTarget(u, w);
+  this->PrefetchCollapse(nextTop, 1);
+  this->AppendSurvivors(u, w, survivors);
+  Vertex& ru = this->Vertices[u];
+  Vertex& rw = this->Vertices[w];
+  ru.State |= RemovedBit;
+  if (rw.Kind == KindClosed && ru.Kind != KindClosed)
+  {
+    rw.Kind = KindFree; // w may have inherited an open fan
+  }
+  this->KeepMergedConstraintEdges(w);
+
+  this->PrefetchCollapse(nextTop, 2);
+  this->PrefetchSoonTriangles();
+  this->MergeQuadrics(u, w);
+  this->RecordStepError(w);
+
+  this->PrefetchCollapse(nextTop, 3);
+  this->PrefetchSoonNeighbours();
+  this->RetargetSurvivor(w);
+  this->UpdateRing(u, w);
+  this->RetryBlocked();
+  this->PrefetchCollapse(nextTop, 4);
+  this->RemoveOrphans(w);
 }
 
 //------------------------------------------------------------------------------

@@ -15,6 +15,7 @@
 #include "CollapseQuadric.h"
 #include "CollapseRecords.h"
 #include "CostLanes.h"
+#include "FanGroups.h"
 #include "HugePageAllocator.h"
 #include "IndexedHeap.h"
 #include "ProgressReporter.h"
@@ -153,6 +154,16 @@ private:
   void BuildFaceQuadrics();
   bool ClassifyVertices();
   bool ClassifyClosedFan(uint32_t v, float cosFeature);
+  /// What makes an edge a constraint (see ClassifyFanEdge).
+  struct EdgeRules
+  {
+    float CosFeature;      // cosine of the feature angle
+    double BoundaryWeight; // weight of the constraint planes along boundaries
+  };
+  bool ClassifyGeneralFan(uint32_t v, FanGroups& fan, const EdgeRules& rules);
+  void ClassifyFanEdge(
+    uint32_t v, const FanGroups& fan, const FanGroups::Group& group, const EdgeRules& rules);
+  Vec3 NormalOf(uint32_t t) const;
   bool SharpTurn(uint32_t v, uint32_t a, uint32_t b) const;
   void AddConstraintPlane(uint32_t a, uint32_t b, const Vec3& faceNormal, double weight);
   void SeedCandidate(uint32_t v);
@@ -170,6 +181,35 @@ private:
   void SetBest(uint32_t v, const Candidate& best);
   void StartLevel(int level);
   uint32_t NextStampBase();
+
+  // --- the steps of CheckCollapse
+  /// Triangles and vertices counted around one end of the edge by the link condition.
+  struct LinkCount
+  {
+    uint32_t Triangles = 0;  // live triangles around the end
+    uint32_t Neighbours = 0; // distinct neighbours of the end
+    uint32_t Shared = 0;     // triangles on the edge (counted from u only)
+  };
+  void PrefetchFans(uint32_t u, uint32_t w);
+  void MarkLinkOfU(uint32_t u, uint32_t w, uint32_t base, LinkCount& link);
+  bool SurvivorsStayValid(uint32_t u, uint32_t w, uint32_t base);
+  bool WouldDuplicate(uint32_t w, uint32_t a, uint32_t b);
+  bool LinkOfWAllowed(uint32_t u, uint32_t w, uint32_t base, LinkCount& link);
+
+  // --- the steps of ApplyCollapse
+  void RecordStep(uint32_t u, uint32_t w);
+  uint32_t MoveFanToTarget(uint32_t u, uint32_t w);
+  void AddToRing(uint32_t x, uint32_t u, uint32_t ringBase);
+  void AppendSurvivors(uint32_t u, uint32_t w, uint32_t survivors);
+  void KeepMergedConstraintEdges(uint32_t w);
+  void PrefetchSoonTriangles();
+  void PrefetchSoonNeighbours();
+  void MergeQuadrics(uint32_t u, uint32_t w);
+  void RecordStepError(uint32_t w);
+  void RetargetSurvivor(uint32_t w);
+  void UpdateRing(uint32_t u, uint32_t w);
+  void RetryBlocked();
+  void RemoveOrphans(uint32_t w);
 
   void HeapSet(uint32_t v, double cost)
   {

@@ -107,6 +107,118 @@ bool CollapseEngine::ClassifyClosedFan(uint32_t v, float cosFeature)
 }
 
 //------------------------------------------------------------------------------
+inline Vec3 CollapseEngine::NormalOf(uint32_t t) const
+{
+  const float* n = this->Normals.data() + 3 * static_cast<size_t>(t);
+  return Vec3{ n[0], n[1], n[2] };
+}
+
+//------------------------------------------------------------------------------
+inline void CollapseEngine::ClassifyFanEdge(
+  uint32_t v, const FanGroups& fan, const FanGroups::Group& group, const EdgeRules& rules)
+{
+  // Edge (v, group.X), classified once, from its lower end; the flags it
+  // sets are seen by the higher end later.
+  const TOMBuildOptions& o = this->Options;
+  const uint32_t x = group.X;
+  const uint32_t n = group.Next + group.Prev;
+  bool constraint = false;
+  const FanGroups::Spoke& s0 = fan.FirstSpoke(group);
+  if (n == 1)
+  {
+    this->AddConstraintPlane(v, x, this->NormalOf(s0.Tri), rules.BoundaryWeight);
+    constraint = o.PreserveBoundaries;
+  }
+  else if (n == 2 && group.Next == 1)
+  {
+    // Manifold, consistently oriented edge: a feature if the dihedral is sharp.
+    uint32_t t1 = s0.Tri;
+    fan.ForEachSpoke(group, [&](const FanGroups::Spoke& s) {
+      if (s.Tri != s0.Tri)
+      {
+        t1 = s.Tri;
+      }
+    });
+    const Vec3 n0 = this->NormalOf(s0.Tri);
+    const Vec3 n1 = this->NormalOf(t1);
+    if (o.PreserveFeatureEdges && Dot(n0, n0) > 0.0 && Dot(n1, n1) > 0.0 &&
+      Dot(n0, n1) < rules.CosFeature)
+    {
+      const double w = o.LockFeatureEdges ? o.ConstraintWeight : o.FeatureWeight;
+      this->AddConstraintPlane(v, x, n0, w);
+      this->AddConstraintPlane(v, x, n1, w);
+      constraint = o.LockFeatureEdges;
+    }
+  }
+  else
+  {
+    // Non-manifold edge or orientation seam: kept until constraints are released.
+    constraint = true;
+  }
+  if (constraint)
+  {
+    fan.ForEachSpoke(
+      group, [this](const FanGroups::Spoke& s) { this->Tris[s.Tri].Flags |= 1u << s.Edge; });
+  }
+}
+
+//------------------------------------------------------------------------------
+bool CollapseEngine::ClassifyGeneralFan(uint32_t v, FanGroups& fan, const EdgeRules& rules)
+{
+  // Any fan: open, large, irregular or non-manifold. False when two of its
+  // triangles have the same three points (see ClassifyVertices).
+  Vertex& rec = this->Vertices[v];
+  fan.Build(this->Pool.data() + rec.AdjStart, rec.AdjCount, this->Tris.data());
+  if (fan.HasDuplicateTriangle())
+  {
+    return false;
+  }
+  bool closed = true;
+  uint32_t constrained = 0;
+  uint32_t ends[2] = { Invalid, Invalid };
+  for (const FanGroups::Group& group : fan.GetGroups())
+  {
+    if (group.Next != 1 || group.Prev != 1)
+    {
+      closed = false;
+    }
+    if (group.X > v)
+    {
+      this->ClassifyFanEdge(v, fan, group, rules);
+    }
+    bool flagged = false;
+    fan.ForEachSpoke(group, [&](const FanGroups::Spoke& s) {
+      flagged |= ((this->Tris[s.Tri].Flags >> s.Edge) & 1u) != 0;
+    });
+    if (flagged)
+    {
+      ends[constrained++ & 1u] = group.X;
+    }
+  }
+  const uint32_t pieces = fan.CountPieces();
+
+  uint8_t kind = KindFree;
+  if (pieces > 1)
+  {
+    kind = KindFixed; // pinch vertex: several fans meet here
+  }
+  else if (constrained == 2 && !this->SharpTurn(v, ends[0], ends[1]))
+  {
+    kind = KindCurve;
+  }
+  else if (constrained > 0)
+  {
+    kind = KindFixed; // end, junction or sharp corner of constraint curves
+  }
+  else if (closed)
+  {
+    kind = KindClosed;
+  }
+  rec.Kind = kind;
+  return true;
+}
+
+//------------------------------------------------------------------------------
 bool CollapseEngine::ClassifyVertices()
 {
   if (this->UseHeap)
@@ -115,271 +227,21 @@ bool CollapseEngine::ClassifyVertices()
   }
   this->Constraints.reserve(this->N / 16 + 16); // boundaries and creases: a minority, usually
   const TOMBuildOptions& o = this->Options;
-  const float cosFeature = static_cast<float>(std::cos(o.FeatureAngle * Pi / 180.0));
-  const double boundaryWeight = o.PreserveBoundaries ? o.ConstraintWeight : 1.0;
-  auto normalOf = [this](uint32_t t) {
-    const float* n = this->Normals.data() + 3 * static_cast<size_t>(t);
-    return Vec3{ n[0], n[1], n[2] };
-  };
-
-  // Around each vertex v: one "spoke" per (triangle, neighbour), grouped by
-  // neighbour so that each edge (v, x) sees all its triangles. Small fans are
-  // grouped by linear search, large ones by sorting; either way the work stays
-  // local to the fan.
-  struct Spoke
-  {
-    uint32_t X;    // neighbour
-    uint32_t Tri;  // triangle
-    uint32_t Edge; // index of edge (v, X) in that triangle
-    uint32_t Prev; // 1 when X precedes v in the triangle (edge X -> v)
-  };
-  struct Group
-  {
-    uint32_t X;
-    uint32_t Next, Prev; // spokes with X following / preceding v
-    uint32_t First;      // first spoke of the group (in `members` once bucketed)
-    uint32_t Parent;     // union-find over the groups: pieces of the fan
-  };
-  std::vector<Spoke> spokes;
-  std::vector<uint32_t> groupOf; // spoke -> group
-  std::vector<Group> groups;
-  std::vector<uint32_t> order;
-  std::vector<uint32_t> members; // spokes bucketed by group
-  auto find = [&groups](uint32_t g) {
-    while (groups[g].Parent != g)
-    {
-      groups[g].Parent = groups[groups[g].Parent].Parent;
-      g = groups[g].Parent;
-    }
-    return g;
-  };
-  constexpr uint32_t linearSearchLimit = 48;
-
+  EdgeRules rules;
+  rules.CosFeature = static_cast<float>(std::cos(o.FeatureAngle * Pi / 180.0));
+  rules.BoundaryWeight = o.PreserveBoundaries ? o.ConstraintWeight : 1.0;
+  FanGroups fan;
   for (uint32_t v = 0; v < this->N; ++v)
   {
-    Vertex& rec = this->Vertices[v];
-    const uint32_t* list = this->Pool.data() + rec.AdjStart;
-    const uint32_t count = rec.AdjCount;
-    if (this->ClassifyClosedFan(v, cosFeature))
+    // Duplicate triangles (the same three points) share an edge and its
+    // third corner. None touches a vertex of the fast path (its walk around
+    // the fan needs distinct neighbours), so every one is met by the general
+    // path: the setup starts again without them (Run).
+    if (!this->ClassifyClosedFan(v, rules.CosFeature) &&
+      !this->ClassifyGeneralFan(v, fan, rules))
     {
-      this->SeedCandidate(v);
-      continue;
+      return false;
     }
-    spokes.resize(2 * static_cast<size_t>(count));
-    groupOf.resize(spokes.size());
-    groups.clear();
-    for (uint32_t i = 0; i < count; ++i)
-    {
-      const uint32_t t = list[i] >> 2;
-      const uint32_t j = list[i] & 3u;
-      const Tri& tri = this->Tris[t];
-      spokes[2 * i] = { tri.V[Next3(j)], t, j, 0 };
-      spokes[2 * i + 1] = { tri.V[Prev3(j)], t, Prev3(j), 1 };
-    }
-    auto addToGroup = [&](size_t k, uint32_t g) {
-      groupOf[k] = g;
-      if (spokes[k].Prev)
-      {
-        ++groups[g].Prev;
-      }
-      else
-      {
-        ++groups[g].Next;
-      }
-    };
-    if (count <= linearSearchLimit)
-    {
-      for (size_t k = 0; k < spokes.size(); ++k)
-      {
-        const uint32_t x = spokes[k].X;
-        uint32_t g = 0;
-        const uint32_t numberOfGroups = static_cast<uint32_t>(groups.size());
-        while (g < numberOfGroups && groups[g].X != x)
-        {
-          ++g;
-        }
-        if (g == numberOfGroups)
-        {
-          groups.push_back({ x, 0, 0, static_cast<uint32_t>(k), g });
-        }
-        addToGroup(k, g);
-      }
-    }
-    else
-    {
-      order.resize(spokes.size());
-      for (uint32_t k = 0; k < order.size(); ++k)
-      {
-        order[k] = k;
-      }
-      std::sort(order.begin(), order.end(), [&spokes](uint32_t a, uint32_t b) {
-        return spokes[a].X < spokes[b].X || (spokes[a].X == spokes[b].X && a < b);
-      });
-      for (size_t r = 0; r < order.size(); ++r)
-      {
-        const uint32_t k = order[r];
-        if (r == 0 || spokes[order[r - 1]].X != spokes[k].X)
-        {
-          const uint32_t g = static_cast<uint32_t>(groups.size());
-          groups.push_back({ spokes[k].X, 0, 0, k, g });
-        }
-        addToGroup(k, static_cast<uint32_t>(groups.size() - 1));
-      }
-    }
-
-    // Bucket the spokes by group (counting sort) so each edge finds its triangles directly.
-    {
-      uint32_t offset = 0;
-      for (Group& group : groups)
-      {
-        group.First = offset;
-        offset += group.Next + group.Prev;
-      }
-      members.resize(spokes.size());
-      for (uint32_t k = 0; k < spokes.size(); ++k)
-      {
-        members[groups[groupOf[k]].First++] = k;
-      }
-      for (Group& group : groups)
-      {
-        group.First -= group.Next + group.Prev;
-      }
-    }
-
-    // Duplicate triangles (the same three points) share an edge and its third
-    // corner. None touches a vertex of the fast path (its walk around the fan
-    // needs distinct neighbours), so every one is met here: the setup starts
-    // again without them (Run). Usually two triangles per edge: one compare.
-    for (const Group& group : groups)
-    {
-      const uint32_t n = group.Next + group.Prev;
-      const uint32_t* m = members.data() + group.First;
-      if (n > linearSearchLimit)
-      {
-        order.resize(n);
-        for (uint32_t k = 0; k < n; ++k)
-        {
-          order[k] = spokes[m[k] ^ 1u].X; // the third corner (the sibling spoke's neighbour)
-        }
-        std::sort(order.begin(), order.end());
-        if (std::adjacent_find(order.begin(), order.end()) != order.end())
-        {
-          return false;
-        }
-        continue;
-      }
-      for (uint32_t a = 1; a < n; ++a)
-      {
-        for (uint32_t b = 0; b < a; ++b)
-        {
-          if (spokes[m[a] ^ 1u].X == spokes[m[b] ^ 1u].X)
-          {
-            return false;
-          }
-        }
-      }
-    }
-
-    // Each edge is classified once, from its lower end; the flags it sets
-    // are seen by the higher end later.
-    bool closed = true;
-    uint32_t constrained = 0;
-    uint32_t ends[2] = { Invalid, Invalid };
-    for (uint32_t g = 0; g < groups.size(); ++g)
-    {
-      const Group& group = groups[g];
-      const uint32_t x = group.X;
-      const uint32_t n = group.Next + group.Prev;
-      if (group.Next != 1 || group.Prev != 1)
-      {
-        closed = false;
-      }
-      // The spokes of this group (few: usually two).
-      auto forEachSpoke = [&](auto&& f) {
-        for (uint32_t k = group.First; k < group.First + n; ++k)
-        {
-          f(spokes[members[k]]);
-        }
-      };
-      if (x > v)
-      {
-        bool constraint = false;
-        const Spoke& s0 = spokes[members[group.First]];
-        if (n == 1)
-        {
-          this->AddConstraintPlane(v, x, normalOf(s0.Tri), boundaryWeight);
-          constraint = o.PreserveBoundaries;
-        }
-        else if (n == 2 && group.Next == 1)
-        {
-          // Manifold, consistently oriented edge: a feature if the dihedral is sharp.
-          uint32_t t1 = s0.Tri;
-          forEachSpoke([&](const Spoke& s) {
-            if (s.Tri != s0.Tri)
-            {
-              t1 = s.Tri;
-            }
-          });
-          const Vec3 n0 = normalOf(s0.Tri);
-          const Vec3 n1 = normalOf(t1);
-          if (o.PreserveFeatureEdges && Dot(n0, n0) > 0.0 && Dot(n1, n1) > 0.0 &&
-            Dot(n0, n1) < cosFeature)
-          {
-            const double w = o.LockFeatureEdges ? o.ConstraintWeight : o.FeatureWeight;
-            this->AddConstraintPlane(v, x, n0, w);
-            this->AddConstraintPlane(v, x, n1, w);
-            constraint = o.LockFeatureEdges;
-          }
-        }
-        else
-        {
-          // Non-manifold edge or orientation seam: kept until constraints are released.
-          constraint = true;
-        }
-        if (constraint)
-        {
-          forEachSpoke([this](const Spoke& s) { this->Tris[s.Tri].Flags |= 1u << s.Edge; });
-        }
-      }
-      bool flagged = false;
-      forEachSpoke([&](const Spoke& s) { flagged |= ((this->Tris[s.Tri].Flags >> s.Edge) & 1u) != 0; });
-      if (flagged)
-      {
-        ends[constrained++ & 1u] = x;
-      }
-    }
-
-    // Pieces of the fan: the link graph has an edge per triangle.
-    uint32_t pieces = static_cast<uint32_t>(groups.size());
-    for (uint32_t i = 0; i < count; ++i)
-    {
-      const uint32_t ra = find(groupOf[2 * i]);
-      const uint32_t rb = find(groupOf[2 * i + 1]);
-      if (ra != rb)
-      {
-        groups[ra].Parent = rb;
-        --pieces;
-      }
-    }
-
-    uint8_t kind = KindFree;
-    if (pieces > 1)
-    {
-      kind = KindFixed; // pinch vertex: several fans meet here
-    }
-    else if (constrained == 2 && !this->SharpTurn(v, ends[0], ends[1]))
-    {
-      kind = KindCurve;
-    }
-    else if (constrained > 0)
-    {
-      kind = KindFixed; // end, junction or sharp corner of constraint curves
-    }
-    else if (closed)
-    {
-      kind = KindClosed;
-    }
-    rec.Kind = kind;
     this->SeedCandidate(v);
   }
   if (this->UseHeap)
