@@ -91,7 +91,7 @@ Cone MergeCones(const Cone& c1, const Cone& c2)
 }
 
 /// Writes a node's cone. An axis that is not a unit vector (face normals
-/// that overflow or underflow on extreme coordinates: found by fuzzing) gives
+/// that overflow or underflow on extreme coordinates) gives
 /// the whole sphere, which bounds every normal, instead of a cone that lies.
 void StoreCone(MergeTree& tree, uint32_t v, const Cone& cone)
 {
@@ -293,7 +293,7 @@ inline void Prefetch(const void* p)
 constexpr uint32_t Succ[3] = { 1, 2, 0 };
 constexpr uint32_t Pred[3] = { 2, 0, 1 };
 
-/// Sorts a row of distinct ids (rows hold ~10 ids: insertion sort).
+/// Sorts a row of distinct ids (rows are short: insertion sort).
 void SortRow(uint32_t* first, uint32_t* last)
 {
   if (last - first > 48)
@@ -394,8 +394,8 @@ public:
     // ascending: shifts, not divisions by 3) in one arena: an event writes
     // the new fan of u (its living corners, then v's survivors) at the end,
     // as contiguous corners whose triangles load in parallel (a linked list
-    // would chain the misses). About 7 corners per event: grows by doubling
-    // past 8.
+    // would chain the misses). Room for 8 corners per event, a few more than
+    // an event writes on ordinary meshes; grows by doubling past that.
     , Fans(3 * size_t(T) + 8 * size_t(N - B) + 64, scratch)
     , FanEnd(3 * size_t(T))
     , Cones(N, scratch)
@@ -420,7 +420,7 @@ public:
     this->ScatterFans();
     this->FinishLeafCones();
     // Rows in replay order (v descending), in place: turned into vertex
-    // order at the end. About 7 per event.
+    // order at the end. A few per event.
     this->Rows.reserve(8 * size_t(this->N - this->B) + 64);
     for (uint32_t v = this->N; v-- > this->B;)
     {
