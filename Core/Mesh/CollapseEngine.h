@@ -180,7 +180,20 @@ private:
   void Park(uint32_t v);
   void SetBest(uint32_t v, const Candidate& best);
   void StartLevel(int level);
-  uint32_t NextStampBase();
+  /// A fresh stamp for the scratch marks (see MarkU), clearing them all.
+  uint32_t NextStampBase()
+  {
+    if (++this->Stamp >= (1u << 29))
+    {
+      // Out of stamps (after half a billion checks): clear the marks once.
+      for (Vertex& v : this->Vertices)
+      {
+        v.Mark = 0;
+      }
+      this->Stamp = 1;
+    }
+    return this->Stamp << 3;
+  }
 
   // --- the steps of CheckCollapse
   /// Triangles and vertices counted around one end of the edge by the link condition.
@@ -305,10 +318,11 @@ private:
    * region. Q alone (Garland-Heckbert) favours small triangles whatever their
    * deviation; Q/A follows distances only, and lets large, already simplified
    * regions keep collapsing while their mean stays low, however far their
-   * worst parts move; the square root of A weighs the two (it
-   * compared best against other exponents). The cost depends only on the source's quadric and the
-   * target's position, so it does not change when the target absorbs other
-   * vertices: a collapse changes few keys, which are all kept exact.
+   * worst parts move. Dividing by sqrt(A) lies between the two, and gave
+   * the smallest Hausdorff errors of the exponents of A compared. The cost
+   * depends only on the source's quadric and the target's position, so it
+   * does not change when the target absorbs other vertices: a collapse
+   * changes few keys, which are all kept exact.
    *
    * A small "moment" term, area already gathered at the vertex times the
    * squared length of the move, breaks the ties of flat regions, where every
