@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "MergeTreeAttributes.h"
 
-#include "CollapseEngine.h"
+#include "ScratchBlocks.h"
+#include "TOMBuildOptions.h" // for MaximumCoordinateMagnitude
 #include "TOMMesh.h"
 #include "TOMValidator.h"
 
@@ -12,6 +13,7 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace timecritical
@@ -89,7 +91,7 @@ Cone MergeCones(const Cone& c1, const Cone& c2)
 }
 
 /// Writes a node's cone. An axis that is not a unit vector (face normals
-/// that overflow or underflow on extreme coordinates: found by fuzzing) gives
+/// that overflow or underflow on extreme coordinates) gives
 /// the whole sphere, which bounds every normal, instead of a cone that lies.
 void StoreCone(MergeTree& tree, uint32_t v, const Cone& cone)
 {
@@ -291,7 +293,7 @@ inline void Prefetch(const void* p)
 constexpr uint32_t Succ[3] = { 1, 2, 0 };
 constexpr uint32_t Pred[3] = { 2, 0, 1 };
 
-/// Sorts a row of distinct ids (rows hold ~10 ids: insertion sort).
+/// Sorts a row of distinct ids (rows are short: insertion sort).
 void SortRow(uint32_t* first, uint32_t* last)
 {
   if (last - first > 48)
@@ -365,152 +367,207 @@ void CheckShadingWeight(const MergeTreeErrorOptions& options)
 }
 
 //------------------------------------------------------------------------------
-// One pass over the collapse sequence, finest event first. Costs are cache
-// misses on vertices and triangles scattered by the TOM order, so the state
-// lives in one line per vertex (Node) and half a line per triangle (Tri), the
-// next events' lines are prefetched, and the monotone pass ("must be split
-// first", ViewDependentRefinement's rule) runs in the same loop: every event it
-// depends on is earlier in the replay, so its final error and depth are known.
-// The TOM must be valid and the points finite; point v of the TOM is
-// points[3 * pointIds[v]] (points[3 * v] without ids).
-MergeTree Replay(const TOMMesh& tom, const double* points, const uint32_t* pointIds,
-  const uint16_t* levels, const MergeTreeErrorOptions& options, collapse::ScratchBlocks* scratch)
+/**
+ * One pass over the collapse sequence, finest event first. Costs are cache
+ * misses on vertices and triangles scattered by the TOM order, so the state
+ * lives in one line per vertex (Node) and half a line per triangle (Tri), the
+ * next events' lines are prefetched, and the monotone pass ("must be split
+ * first", ViewDependentRefinement's rule) runs in the same loop: every event
+ * it depends on is earlier in the replay, so its final error and depth are
+ * known. The TOM must be valid and the points finite; point v of the TOM is
+ * points[3 * pointIds[v]] (points[3 * v] without ids).
+ */
+class MergeTreeReplay
 {
-  const double shadingWeight = options.ShadingWeight;
-  const bool shading = shadingWeight > 0.0;
-  const uint32_t N = tom.GetNumberOfVertices();
-  const uint32_t B = tom.BaseVertexCount;
-  const uint32_t T = tom.GetNumberOfTriangles();
-  const uint32_t* S = tom.Substitution.data();
-
-  MergeTree tree;
-  tree.Level.assign(N, 0);
-  tree.Error.assign(N, 0.0f);
-  tree.Radius.assign(N, 0.0f);
-  tree.ConeAxis.assign(3 * size_t(N), 0.0f);
-  tree.ConeCosine.assign(N, -1.0f);
-  tree.DependencyOffsets.assign(size_t(N) + 1, 0);
-
-  WorkArray<Node> node(N, scratch);
-  for (uint32_t v = 0; v < N; ++v)
+public:
+  MergeTreeReplay(const TOMMesh& tom, const double* points, const uint32_t* pointIds,
+    const MergeTreeErrorOptions& options, collapse::ScratchBlocks* scratch)
+    : ShadingWeight(options.ShadingWeight)
+    , Shading(options.ShadingWeight > 0.0)
+    , N(tom.GetNumberOfVertices())
+    , B(tom.BaseVertexCount)
+    , T(tom.GetNumberOfTriangles())
+    , S(tom.Substitution.data())
+    , Tom(tom)
+    , Nodes(N, scratch)
+    // Fans of the full-resolution mesh (corners 4t + k by vertex, t
+    // ascending: shifts, not divisions by 3) in one arena: an event writes
+    // the new fan of u (its living corners, then v's survivors) at the end,
+    // as contiguous corners whose triangles load in parallel (a linked list
+    // would chain the misses). Room for 8 corners per event, a few more than
+    // an event writes on ordinary meshes; grows by doubling past that.
+    , Fans(3 * size_t(T) + 8 * size_t(N - B) + 64, scratch)
+    , FanEnd(3 * size_t(T))
+    , Cones(N, scratch)
+    , Tris(T, scratch)
+    , Shades(N, scratch)
+    , RowStart(N, scratch)
+    , Rows(Tree.Dependencies)
   {
-    Node& n = node[v];
-    const double* p = points + 3 * size_t(pointIds ? pointIds[v] : v);
-    n.X = p[0];
-    n.Y = p[1];
-    n.Z = p[2];
-    n.Error = 0.0;
-    n.Radius = 0.0;
-    n.FanStart = 0;
-    n.FanCount = 0;
-    n.Mark = None;
-    n.ChildError = 0.0f;
-    n.ChildDepth = 0;
-    n.PushError = 0.0f;
-    n.PushDepth = 0;
+    this->Tree.Level.assign(N, 0);
+    this->Tree.Error.assign(N, 0.0f);
+    this->Tree.Radius.assign(N, 0.0f);
+    this->Tree.ConeAxis.assign(3 * size_t(N), 0.0f);
+    this->Tree.ConeCosine.assign(N, -1.0f);
+    this->Tree.DependencyOffsets.assign(size_t(N) + 1, 0);
+    this->InitializeNodes(points, pointIds);
   }
-  auto P = [&node](uint32_t v) -> Vec { return { node[v].X, node[v].Y, node[v].Z }; };
 
-  // Fans of the full-resolution mesh (corners 4t + k by vertex, t ascending:
-  // shifts, not divisions by 3)
-  // in one arena: an event writes the new fan of u (its living corners, then
-  // v's survivors) at the end, as contiguous corners whose triangles load in
-  // parallel (a linked list would chain the misses).
-  // ~7 corners per event on igea: grows by doubling past 8.
-  WorkArray<uint32_t> fans(3 * size_t(T) + 8 * size_t(N - B) + 64, scratch);
-  size_t fanEnd = 3 * size_t(T);
+  MergeTree Run(const uint16_t* levels)
+  {
+    this->SumFaceVectors();
+    this->PlaceFans();
+    this->ScatterFans();
+    this->FinishLeafCones();
+    // Rows in replay order (v descending), in place: turned into vertex
+    // order at the end. A few per event.
+    this->Rows.reserve(8 * size_t(this->N - this->B) + 64);
+    for (uint32_t v = this->N; v-- > this->B;)
+    {
+      this->PrefetchEvent(v);
+      this->ReplayEvent(v);
+    }
+    this->FinishRoots();
+    this->OrderRows();
+    this->AssignLevels(levels);
+    return std::move(this->Tree);
+  }
+
+private:
+  /// The triangle (u, A, B) of u's new fan nearest to v, and its squared distance.
+  struct Nearest
+  {
+    double Distance2;
+    uint32_t A, B;
+  };
+
+  Vec P(uint32_t v) const { return { this->Nodes[v].X, this->Nodes[v].Y, this->Nodes[v].Z }; }
+  /// Twice the area of the triangle with corners c, times its unit normal.
+  Vec FaceVector(const uint32_t* c) const
+  {
+    return Cross(Sub(this->P(c[1]), this->P(c[0])), Sub(this->P(c[2]), this->P(c[0])));
+  }
+
+  void InitializeNodes(const double* points, const uint32_t* pointIds)
+  {
+    for (uint32_t v = 0; v < this->N; ++v)
+    {
+      Node& n = this->Nodes[v];
+      const double* p = points + 3 * size_t(pointIds ? pointIds[v] : v);
+      n.X = p[0];
+      n.Y = p[1];
+      n.Z = p[2];
+      n.Error = 0.0;
+      n.Radius = 0.0;
+      n.FanStart = 0;
+      n.FanCount = 0;
+      n.Mark = None;
+      n.ChildError = 0.0f;
+      n.ChildDepth = 0;
+      n.PushError = 0.0f;
+      n.PushDepth = 0;
+    }
+  }
+
   // Leaf cones: every original face normal around the vertex (conservative,
   // unlike the vertex normal alone); axis = area-weighted mean, the face
   // vectors summed in triangle order (by scattering them in triangle order,
   // as the fans list them), then the widest face normal from it.
-  WorkArray<Cone> cone(N, scratch);
-  // Replay state: current corner ids of every triangle.
-  WorkArray<Tri> tri(T, scratch);
-  WorkArray<Shade> shade(N, scratch);
+
+  /// Counts the fans and sums the face vectors around each vertex.
+  void SumFaceVectors()
   {
-    constexpr uint32_t Ahead = 8; // triangles whose vertices are prefetched
-    auto faceArea = [&P](const uint32_t* c) { // twice the area times the normal
-      return Cross(Sub(P(c[1]), P(c[0])), Sub(P(c[2]), P(c[0])));
-    };
-    for (uint32_t v = 0; v < N; ++v)
+    for (uint32_t v = 0; v < this->N; ++v)
     {
-      cone[v] = { { 0.0, 0.0, 0.0 }, 1.0 }; // sum, smallest cosine
+      this->Cones[v] = { { 0.0, 0.0, 0.0 }, 1.0 }; // sum, smallest cosine
     }
-    for (uint32_t t = 0; t < T; ++t)
+    for (uint32_t t = 0; t < this->T; ++t)
     {
-      const uint32_t* c = tom.Triangles.data() + 3 * size_t(t);
-      if (t + Ahead < T)
+      const uint32_t* c = this->Tom.Triangles.data() + 3 * size_t(t);
+      if (t + Ahead < this->T)
       {
         for (int k = 0; k < 3; ++k)
         {
-          Prefetch(&node[c[3 * Ahead + k]]);
-          Prefetch(&cone[c[3 * Ahead + k]]);
+          Prefetch(&this->Nodes[c[3 * Ahead + k]]);
+          Prefetch(&this->Cones[c[3 * Ahead + k]]);
         }
       }
-      const Vec a = faceArea(c);
+      const Vec a = this->FaceVector(c);
       for (int k = 0; k < 3; ++k)
       {
-        ++node[c[k]].FanCount;
-        Vec& sum = cone[c[k]].Axis;
+        ++this->Nodes[c[k]].FanCount;
+        Vec& sum = this->Cones[c[k]].Axis;
         sum = { sum.X + a.X, sum.Y + a.Y, sum.Z + a.Z };
       }
     }
+  }
+
+  /// The fans' places in the arena, the leaf cones' axes and the vertex normals.
+  void PlaceFans()
+  {
     uint32_t fanStart = 0;
-    for (uint32_t v = 0; v < N; ++v)
+    for (uint32_t v = 0; v < this->N; ++v)
     {
-      node[v].FanStart = fanStart;
-      fanStart += node[v].FanCount;
-      node[v].FanCount = 0;
-      const Vec sum = cone[v].Axis;
+      Node& n = this->Nodes[v];
+      n.FanStart = fanStart;
+      fanStart += n.FanCount;
+      n.FanCount = 0;
+      const Vec sum = this->Cones[v].Axis;
       const double len = Norm(sum);
       if (!(len > 0.0))
       {
-        cone[v] = { { 0.0, 0.0, 1.0 }, Pi }; // no usable face: any direction
-        shade[v] = { { 0.0f, 0.0f, 1.0f }, 0.0f };
+        this->Cones[v] = { { 0.0, 0.0, 1.0 }, Pi }; // no usable face: any direction
+        this->Shades[v] = { { 0.0f, 0.0f, 1.0f }, 0.0f };
         continue;
       }
       const Vec axis = { sum.X / len, sum.Y / len, sum.Z / len };
-      cone[v].Axis = axis;
+      this->Cones[v].Axis = axis;
       // The vertex normal (area-weighted, as the leaf cone's axis).
-      shade[v] = { { static_cast<float>(axis.X), static_cast<float>(axis.Y),
-                     static_cast<float>(axis.Z) },
+      this->Shades[v] = { { static_cast<float>(axis.X), static_cast<float>(axis.Y),
+                            static_cast<float>(axis.Z) },
         0.0f };
     }
-    for (uint32_t t = 0; t < T; ++t)
+  }
+
+  /// Fills the fans and the replay's triangles; the smallest cosine of a
+  /// face normal to its leaf cone's axis, per vertex.
+  void ScatterFans()
+  {
+    for (uint32_t t = 0; t < this->T; ++t)
     {
-      const uint32_t* c = tom.Triangles.data() + 3 * size_t(t);
-      if (t + Ahead < T)
+      const uint32_t* c = this->Tom.Triangles.data() + 3 * size_t(t);
+      if (t + Ahead < this->T)
       {
         for (int k = 0; k < 3; ++k)
         {
-          const Node& n = node[c[3 * Ahead + k]];
-          Prefetch(&fans[n.FanStart + n.FanCount]);
-          Prefetch(&cone[c[3 * Ahead + k]]);
+          const Node& n = this->Nodes[c[3 * Ahead + k]];
+          Prefetch(&this->Fans[n.FanStart + n.FanCount]);
+          Prefetch(&this->Cones[c[3 * Ahead + k]]);
         }
       }
-      if (t + 2 * Ahead < T)
+      if (t + 2 * Ahead < this->T)
       {
         for (int k = 0; k < 3; ++k)
         {
-          Prefetch(&node[c[6 * Ahead + k]]);
+          Prefetch(&this->Nodes[c[6 * Ahead + k]]);
         }
       }
-      Tri& r = tri[t];
+      Tri& r = this->Tris[t];
       for (uint32_t k = 0; k < 3; ++k)
       {
-        Node& n = node[c[k]];
-        fans[n.FanStart + n.FanCount++] = t << 2 | k;
+        Node& n = this->Nodes[c[k]];
+        this->Fans[n.FanStart + n.FanCount++] = t << 2 | k;
         r.Cur[k] = c[k];
       }
       r.Dead = 0;
-      const Vec a = faceArea(c);
+      const Vec a = this->FaceVector(c);
       const double area = Norm(a);
       if (area > 0.0) // zero-area face: no normal to bound
       {
         const Vec unit = { a.X / area, a.Y / area, a.Z / area };
         for (uint32_t k = 0; k < 3; ++k)
         {
-          Cone& leaf = cone[c[k]];
+          Cone& leaf = this->Cones[c[k]];
           if (leaf.Angle <= 1.0) // still the smallest cosine (Pi: no usable face)
           {
             leaf.Angle = std::min(leaf.Angle, Dot(leaf.Axis, unit));
@@ -518,9 +575,14 @@ MergeTree Replay(const TOMMesh& tom, const double* points, const uint32_t* point
         }
       }
     }
-    for (uint32_t v = 0; v < N; ++v)
+  }
+
+  /// Turns the smallest cosines into the leaf cones' half-angles.
+  void FinishLeafCones()
+  {
+    for (uint32_t v = 0; v < this->N; ++v)
     {
-      Cone& leaf = cone[v];
+      Cone& leaf = this->Cones[v];
       if (leaf.Angle <= 1.0)
       {
         const double minCos = leaf.Angle;
@@ -530,93 +592,100 @@ MergeTree Replay(const TOMMesh& tom, const double* points, const uint32_t* point
     }
   }
 
-  // Rows in replay order (v descending), in place: turned into vertex order
-  // at the end.
-  WorkArray<uint32_t> rowStart(N, scratch);
-  std::vector<uint32_t>& rows = tree.Dependencies;
-  rows.reserve(8 * size_t(N - B) + 64); // ~7 per event on igea
-
-  for (uint32_t v = N; v-- > B;)
+  /// Prefetch, one stage per event ahead: the pair's vertices, their fans,
+  /// the fans' triangles, the triangles' vertices.
+  void PrefetchEvent(uint32_t v)
   {
-    // Prefetch, one stage per event ahead: the pair's vertices, their fans,
-    // the fans' triangles, the triangles' vertices.
-    if (v >= B + 4)
+    const uint32_t base = this->B;
+    const uint32_t* parent = this->S;
+    if (v >= base + 4)
     {
       const uint32_t w = v - 4;
-      Prefetch(&node[w]);
-      Prefetch(&node[S[w]]);
-      Prefetch(&cone[w]);
-      Prefetch(&cone[S[w]]);
-      if (shading)
+      Prefetch(&this->Nodes[w]);
+      Prefetch(&this->Nodes[parent[w]]);
+      Prefetch(&this->Cones[w]);
+      Prefetch(&this->Cones[parent[w]]);
+      if (this->Shading)
       {
-        Prefetch(&shade[w]);
-        Prefetch(&shade[S[w]]);
+        Prefetch(&this->Shades[w]);
+        Prefetch(&this->Shades[parent[w]]);
       }
     }
-    if (v >= B + 3)
+    if (v >= base + 3)
     {
-      Prefetch(&fans[node[v - 3].FanStart]);
-      Prefetch(&fans[node[S[v - 3]].FanStart]);
+      Prefetch(&this->Fans[this->Nodes[v - 3].FanStart]);
+      Prefetch(&this->Fans[this->Nodes[parent[v - 3]].FanStart]);
     }
-    if (v >= B + 2)
+    if (v >= base + 2)
     {
-      for (const Node* n : { &node[v - 2], &node[S[v - 2]] })
+      for (const Node* n : { &this->Nodes[v - 2], &this->Nodes[parent[v - 2]] })
       {
-        const uint32_t* f = fans.data() + n->FanStart;
+        const uint32_t* f = this->Fans.data() + n->FanStart;
         for (uint32_t i = 0; i < n->FanCount; ++i)
         {
-          Prefetch(&tri[f[i] >> 2]);
+          Prefetch(&this->Tris[f[i] >> 2]);
         }
       }
     }
-    if (v >= B + 1)
+    if (v >= base + 1)
     {
-      for (const Node* n : { &node[v - 1], &node[S[v - 1]] })
+      for (const Node* n : { &this->Nodes[v - 1], &this->Nodes[parent[v - 1]] })
       {
-        const uint32_t* f = fans.data() + n->FanStart;
+        const uint32_t* f = this->Fans.data() + n->FanStart;
         for (uint32_t i = 0; i < n->FanCount; ++i)
         {
           // The next corner's neighbour only: in a closed fan that is each
           // neighbour once (an open fan's last one may come unfetched).
-          const Tri& r = tri[f[i] >> 2];
+          const Tri& r = this->Tris[f[i] >> 2];
           const uint32_t a = r.Cur[Succ[f[i] & 3u]];
-          Prefetch(&node[a]);
-          if (shading)
+          Prefetch(&this->Nodes[a]);
+          if (this->Shading)
           {
-            Prefetch(&shade[a]);
+            Prefetch(&this->Shades[a]);
           }
         }
       }
     }
-    const uint32_t u = S[v];
-    Node& nv = node[v];
-    Node& nu = node[u];
-    const Vec pv = { nv.X, nv.Y, nv.Z }, pu = { nu.X, nu.Y, nu.Z };
-    const Vec pvu = Sub(pv, pu);
-    const size_t rowBegin = rows.size();
-    double local2 = std::numeric_limits<double>::infinity();
-    uint32_t nearA = None, nearB = None; // triangle (u, a, b) of the new fan nearest to v
+  }
+
+  /// Collapses v into u in the fans: v's triangles on the edge die, its
+  /// others move to u; u's new fan is written at the end of the arena, and
+  /// the neighbours of both ends make v's row. Returns the triangle of the
+  /// new fan nearest to v.
+  Nearest MergeFans(uint32_t v, uint32_t u, const Vec& pv, const Vec& pu, const Vec& pvu)
+  {
+    Node& nv = this->Nodes[v];
+    Node& nu = this->Nodes[u];
+    std::vector<uint32_t>& rows = this->Rows;
+    Nearest near{ std::numeric_limits<double>::infinity(), None, None };
     nu.Mark = v;
     nv.Mark = v;
     auto addNeighbor = [&](uint32_t w) {
-      if (node[w].Mark != v)
+      if (this->Nodes[w].Mark != v)
       {
-        node[w].Mark = v;
+        this->Nodes[w].Mark = v;
         rows.push_back(w);
       }
     };
-    if (fanEnd + nv.FanCount + nu.FanCount > fans.size())
+    auto consider = [&](uint32_t a, uint32_t b) {
+      const double d2 = NearerTriangle(near.Distance2, pv, pu, this->P(a), this->P(b), pvu);
+      if (d2 < near.Distance2)
+      {
+        near = { d2, a, b };
+      }
+    };
+    if (this->FanEnd + nv.FanCount + nu.FanCount > this->Fans.size())
     {
-      fans.Grow(2 * (fanEnd + nv.FanCount + nu.FanCount));
+      this->Fans.Grow(2 * (this->FanEnd + nv.FanCount + nu.FanCount));
     }
-    uint32_t* out = fans.data() + fanEnd;
+    uint32_t* out = this->Fans.data() + this->FanEnd;
     // v's corners: neighbours, the triangles dying with e_v (they hold u),
     // and the survivors, relabelled to u and moved to u's new fan.
-    const uint32_t* fv = fans.data() + nv.FanStart;
+    const uint32_t* fv = this->Fans.data() + nv.FanStart;
     for (uint32_t i = 0; i < nv.FanCount; ++i)
     {
       const uint32_t s = fv[i];
-      Tri& r = tri[s >> 2];
+      Tri& r = this->Tris[s >> 2];
       if (r.Dead)
       {
         continue;
@@ -631,23 +700,17 @@ MergeTree Replay(const TOMMesh& tom, const double* points, const uint32_t* point
       }
       else
       {
-        const double d2 = NearerTriangle(local2, pv, pu, P(a), P(b), pvu);
-        if (d2 < local2)
-        {
-          local2 = d2;
-          nearA = a;
-          nearB = b;
-        }
+        consider(a, b);
         r.Cur[k] = u;
         *out++ = s;
       }
     }
     // u's corners: neighbours, the rest of the new fan around u; drop the dead.
-    const uint32_t* fu = fans.data() + nu.FanStart;
+    const uint32_t* fu = this->Fans.data() + nu.FanStart;
     for (uint32_t i = 0; i < nu.FanCount; ++i)
     {
       const uint32_t s = fu[i];
-      const Tri& r = tri[s >> 2];
+      const Tri& r = this->Tris[s >> 2];
       if (r.Dead)
       {
         continue;
@@ -656,21 +719,112 @@ MergeTree Replay(const TOMMesh& tom, const double* points, const uint32_t* point
       const uint32_t a = r.Cur[Succ[k]], b = r.Cur[Pred[k]];
       addNeighbor(a);
       addNeighbor(b);
-      const double d2 = NearerTriangle(local2, pv, pu, P(a), P(b), pvu);
-      if (d2 < local2)
-      {
-        local2 = d2;
-        nearA = a;
-        nearB = b;
-      }
+      consider(a, b);
       *out++ = s;
     }
-    nu.FanStart = static_cast<uint32_t>(fanEnd);
-    nu.FanCount = static_cast<uint32_t>(out - fans.data() - fanEnd);
-    fanEnd += nu.FanCount;
+    nu.FanStart = static_cast<uint32_t>(this->FanEnd);
+    nu.FanCount = static_cast<uint32_t>(out - this->Fans.data() - this->FanEnd);
+    this->FanEnd += nu.FanCount;
     nv.FanCount = 0;
-    SortRow(rows.data() + rowBegin, rows.data() + rows.size());
-    rowStart[v] = static_cast<uint32_t>(rowBegin);
+    return near;
+  }
+
+  /**
+   * Shading: the renderer interpolates the display vertices' own
+   * (full-resolution) normals, so where v was, it now shows the normals of
+   * u, a, b mixed at v's nearest point of the new fan (smooth curvature is
+   * reproduced; a lost bump is not). The angle between that and v's normal
+   * is the local normal error, summed over the children like the geometric
+   * error: the normals shown near earlier merged vertices move with this
+   * change too. Returns it as a length (see ShadingLength).
+   */
+  double ShadingError(uint32_t v, uint32_t u, const Vec& pv, const Vec& pu, const Nearest& near,
+    double radius)
+  {
+    Shade& su = this->Shades[u];
+    const Shade& sv = this->Shades[v];
+    const Vec nuN = { su.N[0], su.N[1], su.N[2] };
+    const Vec nvN = { sv.N[0], sv.N[1], sv.N[2] };
+    // The angle to the shown normal, or to u's own when no triangle is
+    // left: one acos.
+    double localAngle = -1.0;
+    if (near.A != None)
+    {
+      const Vec w = ClosestWeights(pv, pu, this->P(near.A), this->P(near.B));
+      const Shade& sa = this->Shades[near.A];
+      const Shade& sb = this->Shades[near.B];
+      const Vec shown = { w.X * nuN.X + w.Y * sa.N[0] + w.Z * sb.N[0],
+        w.X * nuN.Y + w.Y * sa.N[1] + w.Z * sb.N[1], w.X * nuN.Z + w.Y * sa.N[2] + w.Z * sb.N[2] };
+      const double len = Norm(shown);
+      if (len > 1e-12)
+      {
+        localAngle = Angle(nvN, { shown.X / len, shown.Y / len, shown.Z / len });
+      }
+    }
+    if (localAngle < 0.0)
+    {
+      localAngle = Angle(nuN, nvN);
+    }
+    const double deviation =
+      std::min(std::max<double>(su.Deviation, sv.Deviation) + localAngle, Pi);
+    su.Deviation = static_cast<float>(deviation);
+    // As a length: a normal tilted by that angle over the node's radius is
+    // a tangent plane whose rim moves by about radius * angle, so its
+    // projection in pixels grows with the node's projected size, as the
+    // node's share of a squared image error does.
+    return ShadingLength(this->ShadingWeight, radius, deviation);
+  }
+
+  /**
+   * Monotone error and depth: e_v needs its previous sibling (the last child
+   * merged into u), its own last child, and for each row vertex n the last
+   * child merged into n; events needing e_v pushed onto it before.
+   */
+  void SetMonotoneError(uint32_t v, uint32_t u, size_t rowBegin, double nodeError,
+    double shadingError)
+  {
+    Node& nv = this->Nodes[v];
+    Node& nu = this->Nodes[u];
+    float error = std::max(FloatNotBelow(std::max(nodeError, shadingError)), nv.PushError);
+    uint32_t depth = nv.PushDepth; // saturated: see Node
+    error = std::max(error, std::max(nu.ChildError, nv.ChildError));
+    depth = std::max<uint32_t>(depth, std::max(nu.ChildDepth, nv.ChildDepth));
+    const uint32_t* row = this->Rows.data() + rowBegin;
+    const size_t rowSize = this->Rows.size() - rowBegin;
+    for (size_t i = 0; i < rowSize; ++i)
+    {
+      const Node& n = this->Nodes[row[i]];
+      error = std::max(error, n.ChildError);
+      depth = std::max<uint32_t>(depth, n.ChildDepth);
+    }
+    for (size_t i = 0; i < rowSize; ++i)
+    {
+      if (row[i] >= this->B)
+      {
+        Node& n = this->Nodes[row[i]];
+        n.PushError = std::max(n.PushError, error);
+        n.PushDepth =
+          static_cast<uint16_t>(std::max<uint32_t>(n.PushDepth, std::min(depth + 1, 65535u)));
+      }
+    }
+    nu.ChildError = error;
+    nu.ChildDepth = static_cast<uint16_t>(std::min(depth + 1, 65535u));
+    this->Tree.Error[v] = error;
+    this->Tree.Level[v] = static_cast<uint16_t>(std::min<uint32_t>(depth, 65534u));
+  }
+
+  /// The event that merges v into its parent u = S[v].
+  void ReplayEvent(uint32_t v)
+  {
+    const uint32_t u = this->S[v];
+    Node& nv = this->Nodes[v];
+    Node& nu = this->Nodes[u];
+    const Vec pv = { nv.X, nv.Y, nv.Z }, pu = { nu.X, nu.Y, nu.Z };
+    const Vec pvu = Sub(pv, pu);
+    const size_t rowBegin = this->Rows.size();
+    const Nearest near = this->MergeFans(v, u, pv, pu, pvu);
+    SortRow(this->Rows.data() + rowBegin, this->Rows.data() + this->Rows.size());
+    this->RowStart[v] = static_cast<uint32_t>(rowBegin);
 
     // Geometry of the node u + v. Radius: nested spheres around the parent.
     // Error: the triangle inequality over the local surface change (distance
@@ -678,130 +832,94 @@ MergeTree Replay(const TOMMesh& tom, const double* points, const uint32_t* point
     // bounds the displacement of every original point of the node.
     const double edge = Norm(pvu);
     const double radius = std::max(nu.Radius, edge + nv.Radius);
-    const double local = std::isfinite(local2) ? std::sqrt(local2) : edge;
+    const double local = std::isfinite(near.Distance2) ? std::sqrt(near.Distance2) : edge;
     const double nodeError = std::min(std::max(nu.Error, nv.Error) + local, radius);
     nu.Radius = radius;
     nu.Error = nodeError;
-    Cone& cu = cone[u];
-    cu = MergeCones(cu, cone[v]);
+    Cone& cu = this->Cones[u];
+    cu = MergeCones(cu, this->Cones[v]);
 
-    // Shading: the renderer interpolates the display vertices' own
-    // (full-resolution) normals, so where v was, it now shows the normals of
-    // u, a, b mixed at v's nearest point of the new fan (smooth curvature is
-    // reproduced; a lost bump is not). The angle between that and v's normal
-    // is the local normal error, summed over the children like the geometric
-    // error: the normals shown near earlier merged vertices move with this
-    // change too. Skipped (no cost) without a shading weight.
-    double shadingError = 0.0;
-    if (shading)
+    // Skipped (no cost) without a shading weight.
+    const double shadingError =
+      this->Shading ? this->ShadingError(v, u, pv, pu, near, radius) : 0.0;
+    this->Tree.Radius[v] = FloatNotBelow(radius);
+    StoreCone(this->Tree, v, cu);
+    this->SetMonotoneError(v, u, rowBegin, nodeError, shadingError);
+  }
+
+  /// Roots bound their whole tree: their own node error and every child's.
+  void FinishRoots()
+  {
+    for (uint32_t w = 0; w < this->B; ++w)
     {
-      Shade& su = shade[u];
-      const Shade& sv = shade[v];
-      const Vec nuN = { su.N[0], su.N[1], su.N[2] };
-      const Vec nvN = { sv.N[0], sv.N[1], sv.N[2] };
-      // The angle to the shown normal, or to u's own when no triangle is
-      // left: one acos (a good part of an event's cost).
-      double localAngle = -1.0;
-      if (nearA != None)
-      {
-        const Vec w = ClosestWeights(pv, pu, P(nearA), P(nearB));
-        const Shade& sa = shade[nearA];
-        const Shade& sb = shade[nearB];
-        const Vec shown = { w.X * nuN.X + w.Y * sa.N[0] + w.Z * sb.N[0],
-          w.X * nuN.Y + w.Y * sa.N[1] + w.Z * sb.N[1],
-          w.X * nuN.Z + w.Y * sa.N[2] + w.Z * sb.N[2] };
-        const double len = Norm(shown);
-        if (len > 1e-12)
-        {
-          localAngle = Angle(nvN, { shown.X / len, shown.Y / len, shown.Z / len });
-        }
-      }
-      if (localAngle < 0.0)
-      {
-        localAngle = Angle(nuN, nvN);
-      }
-      const double deviation =
-        std::min(std::max<double>(su.Deviation, sv.Deviation) + localAngle, Pi);
-      su.Deviation = static_cast<float>(deviation);
-      // As a length: a normal tilted by that angle over the node's radius is
-      // a tangent plane whose rim moves by about radius * angle, so its
-      // projection in pixels grows with the node's projected size, as the
-      // node's share of a squared image error does.
-      shadingError = ShadingLength(shadingWeight, radius, deviation);
+      const Node& n = this->Nodes[w];
+      this->Tree.Error[w] = std::max(
+        FloatNotBelow(std::max(n.Error, ShadingLength(this->ShadingWeight, n.Radius,
+                                          this->Shades[w].Deviation))),
+        n.ChildError);
+      this->Tree.Radius[w] = FloatNotBelow(n.Radius);
+      StoreCone(this->Tree, w, this->Cones[w]);
     }
-    tree.Radius[v] = FloatNotBelow(radius);
-    StoreCone(tree, v, cu);
+  }
 
-    // Monotone error and depth: e_v needs its previous sibling (the last child
-    // merged into u), its own last child, and for each row vertex n the last
-    // child merged into n; events needing e_v pushed onto it before.
-    float error = std::max(FloatNotBelow(std::max(nodeError, shadingError)), nv.PushError);
-    uint32_t depth = nv.PushDepth; // saturated: see Node
-    error = std::max(error, std::max(nu.ChildError, nv.ChildError));
-    depth = std::max<uint32_t>(depth, std::max(nu.ChildDepth, nv.ChildDepth));
-    const uint32_t* row = rows.data() + rowBegin;
-    const size_t rowSize = rows.size() - rowBegin;
-    for (size_t i = 0; i < rowSize; ++i)
+  /// Dependency rows in vertex order: the replay wrote them from the last
+  /// vertex down, so the reversed array lists the rows in vertex order, each
+  /// reversed; then each row is turned back.
+  void OrderRows()
+  {
+    std::vector<uint32_t>& rows = this->Rows;
+    std::vector<uint32_t>& offsets = this->Tree.DependencyOffsets;
+    for (uint32_t v = 0; v < this->N; ++v)
     {
-      const Node& n = node[row[i]];
-      error = std::max(error, n.ChildError);
-      depth = std::max<uint32_t>(depth, n.ChildDepth);
+      const uint32_t length = v < this->B ? 0u
+        : static_cast<uint32_t>(
+            (v == this->B ? rows.size() : this->RowStart[v - 1]) - this->RowStart[v]);
+      offsets[size_t(v) + 1] = offsets[v] + length;
     }
-    for (size_t i = 0; i < rowSize; ++i)
+    std::reverse(rows.begin(), rows.end());
+    for (uint32_t v = this->B; v < this->N; ++v)
     {
-      if (row[i] >= B)
-      {
-        Node& n = node[row[i]];
-        n.PushError = std::max(n.PushError, error);
-        n.PushDepth = static_cast<uint16_t>(std::max<uint32_t>(n.PushDepth, std::min(depth + 1, 65535u)));
-      }
+      std::reverse(rows.begin() + offsets[v], rows.begin() + offsets[size_t(v) + 1]);
     }
-    nu.ChildError = error;
-    nu.ChildDepth = static_cast<uint16_t>(std::min(depth + 1, 65535u));
-    tree.Error[v] = error;
-    tree.Level[v] = static_cast<uint16_t>(std::min<uint32_t>(depth, 65534u));
-  }
-  // Roots bound their whole tree: their own node error and every child's.
-  for (uint32_t w = 0; w < B; ++w)
-  {
-    tree.Error[w] = std::max(FloatNotBelow(std::max(node[w].Error,
-                               ShadingLength(shadingWeight, node[w].Radius, shade[w].Deviation))),
-      node[w].ChildError);
-    tree.Radius[w] = FloatNotBelow(node[w].Radius);
-    StoreCone(tree, w, cone[w]);
   }
 
-  // Dependency rows in vertex order: the replay wrote them from the last
-  // vertex down, so the reversed array lists the rows in vertex order, each
-  // reversed; then each row is turned back.
-  for (uint32_t v = 0; v < N; ++v)
+  /// Levels: given, or the depth above (0 = finest) saturated to 16 bits.
+  void AssignLevels(const uint16_t* levels)
   {
-    const uint32_t length = v < B ? 0u
-      : static_cast<uint32_t>((v == B ? rows.size() : rowStart[v - 1]) - rowStart[v]);
-    tree.DependencyOffsets[size_t(v) + 1] = tree.DependencyOffsets[v] + length;
-  }
-  std::reverse(rows.begin(), rows.end());
-  for (uint32_t v = B; v < N; ++v)
-  {
-    std::reverse(rows.begin() + tree.DependencyOffsets[v],
-      rows.begin() + tree.DependencyOffsets[size_t(v) + 1]);
+    MergeTree& tree = this->Tree;
+    uint32_t levelCount = 0;
+    for (uint32_t v = this->B; v < this->N; ++v)
+    {
+      const uint32_t level = levels == nullptr ? tree.Level[v] : levels[v];
+      tree.Level[v] = static_cast<uint16_t>(level);
+      levelCount = std::max(levelCount, level + 1);
+    }
+    tree.LevelCount = static_cast<uint16_t>(std::min<uint32_t>(levelCount, 65535u));
+    for (uint32_t w = 0; w < this->B; ++w)
+    {
+      tree.Level[w] = tree.LevelCount;
+    }
   }
 
-  // Levels: given, or the depth above (0 = finest) saturated to 16 bits.
-  uint32_t levelCount = 0;
-  for (uint32_t v = B; v < N; ++v)
-  {
-    const uint32_t level = levels == nullptr ? tree.Level[v] : levels[v];
-    tree.Level[v] = static_cast<uint16_t>(level);
-    levelCount = std::max(levelCount, level + 1);
-  }
-  tree.LevelCount = static_cast<uint16_t>(std::min<uint32_t>(levelCount, 65535u));
-  for (uint32_t w = 0; w < B; ++w)
-  {
-    tree.Level[w] = tree.LevelCount;
-  }
-  return tree;
-}
+  static constexpr uint32_t Ahead = 8; // triangles whose vertices are prefetched
+
+  const double ShadingWeight;
+  const bool Shading;
+  const uint32_t N; // vertices
+  const uint32_t B; // base vertices
+  const uint32_t T; // triangles
+  const uint32_t* const S; // the substitution
+  const TOMMesh& Tom;
+  MergeTree Tree;
+  WorkArray<Node> Nodes;
+  WorkArray<uint32_t> Fans; // the fans' corners
+  size_t FanEnd;            // end of the fans written so far
+  WorkArray<Cone> Cones;    // the nodes' normal cones
+  WorkArray<Tri> Tris;      // current corner ids of every triangle
+  WorkArray<Shade> Shades;
+  WorkArray<uint32_t> RowStart; // per event, the start of its row in Rows
+  std::vector<uint32_t>& Rows;  // the dependency rows, in Tree
+};
 }
 
 //------------------------------------------------------------------------------
@@ -840,7 +958,7 @@ MergeTree ComputeMergeTree(const TOMMesh& tom, const double* points, const uint1
       throw std::invalid_argument(message);
     }
   }
-  return Replay(tom, points, nullptr, levels, options, nullptr);
+  return MergeTreeReplay(tom, points, nullptr, options, nullptr).Run(levels);
 }
 
 //------------------------------------------------------------------------------
@@ -849,6 +967,6 @@ MergeTree detail::ComputeBuiltMergeTree(const TOMMesh& tom, const double* points
   collapse::ScratchBlocks* scratch)
 {
   CheckShadingWeight(options);
-  return Replay(tom, points, pointIds, levels, options, scratch);
+  return MergeTreeReplay(tom, points, pointIds, options, scratch).Run(levels);
 }
 }
