@@ -8,9 +8,9 @@
  * polydata leaf is an *object* with its own resolution, numbered in the
  * composite iteration order (0 for polydata input).
  *
- * Why one draw call: with Mesa llvmpipe one draw call costs 0.25-0.35 ms, so
- * hundreds of objects drawn separately cost more than the frame budget before
- * a single triangle is rasterized. All leaves are concatenated once into one
+ * Why one draw call: a draw call has a fixed cost on the CPU, so hundreds of
+ * objects drawn separately can cost more than the frame budget before a
+ * single triangle is rasterized. All leaves are concatenated once into one
  * vertex buffer group (positions, normals, scalars, texture coordinates, in
  * leaf order, appended from the leaves themselves: the mapper keeps no merged
  * copy of them), and one index buffer holds a *slot* per object: its active
@@ -22,9 +22,9 @@
  * outgrows its slot moves to a free range; padding is compacted (slots moved,
  * not extracted again) when it exceeds twice a fresh layout's. Nothing is
  * allocated per frame. A resolution of 0 leaves the object out (culled).
- * On llvmpipe a degenerate triangle costs about 10-16 ns against ~300 ns for
- * a small real one; on a W1-like walkthrough padding averages ~20% of the
- * drawn triangles (about 1% of their cost).
+ * A degenerate triangle is far cheaper to draw than a real one (it is
+ * rejected before rasterization), so padding costs little drawing time.
+ * The slots are laid out by timecritical::IndexSlotAllocator.
  *
  * Otherwise it behaves like VTK's polydata mapper: scalar coloring, lighting,
  * surface/wireframe/points representation, software picking (vtkCellPicker
@@ -84,10 +84,7 @@
  * capacity) and cell textures (4 or 16 bytes per full-resolution primitive);
  * the vertex buffers' CPU packing is freed once uploaded, so rebuilding them
  * (a leaf changed, camera-based shift and scale moved) appends the leaves
- * again. A change of colors alone re-uploads the color buffer only. On the
- * W3 scene (13M triangles in 2,024 objects, llvmpipe, whose GL buffers live
- * in process memory) the renderer takes 52-54 bytes per triangle above the
- * input (RSS; 43-46 of heap), 92 with the merged copy it used to keep.
+ * again. A change of colors alone re-uploads the color buffer only.
  *
  * @sa vtkTOMPolyDataMapper vtkTimeCriticalRenderer vtkTOMBuilder
  */
@@ -97,8 +94,12 @@
 #include "TimeCriticalRenderingModule.h" // for export macro
 #include "vtkOpenGLPolyDataMapper.h"
 
-#include <memory> // for std::unique_ptr
-#include <vector> // for ProcessSelectorPixelBuffers
+#include <memory>  // for std::unique_ptr
+#include <string>  // for UploadLeafBuffers
+#include <utility> // for UploadLeafBuffers
+#include <vector>  // for ProcessSelectorPixelBuffers
+
+class vtkStateStorage;
 
 class TIMECRITICALRENDERING_EXPORT vtkMultiresolutionPolyDataMapper : public vtkOpenGLPolyDataMapper
 {
@@ -385,10 +386,22 @@ private:
   bool IsValidObject(vtkIdType i) const; ///< with an error when not
   vtkAbstractArray* GetLeafScalars(vtkPolyData* leaf, vtkAbstractArray* common, int cellFlag);
   vtkUnsignedCharArray* MapLeafScalars(vtkAbstractArray* common, double alpha, int cellFlag);
+  void PrepareLeafLookupTable(vtkAbstractArray* common, int cellFlag);
   void BuildVertexBuffers(vtkRenderer* ren, vtkActor* act);
+  bool PrepareColorsAndCellTextures(vtkRenderer* ren, vtkActor* act); ///< point normals drawn
+  int GetTCoordsSource();
+  void GetLeafBufferState(vtkStateStorage& state, bool pointNormals, int tcoords);
+  void AppendLeafBuffers(
+    vtkRenderer* ren, vtkActor* act, vtkDataArray* pointColors, bool pointNormals, int tcoords);
+  void UploadLeafBuffers(
+    vtkRenderer* ren, const std::vector<std::pair<std::string, int>>& appended);
   void PatchStripOffset();
   void ReadObjects(vtkDataObject* input);
   void FillIndexBuffer(vtkRenderer* ren, vtkActor* act, bool rebuild);
+  bool UpdateSlots();
+  void UploadIndexRanges();
+  void FillVertexIndices();
+  void WriteProcessIds(vtkHardwareSelector* sel, const std::vector<unsigned int>& pixeloffsets);
   void PrepareLayout(vtkRenderer* ren, vtkActor* act);
   void RefineObjects(vtkRenderer* ren, vtkActor* act);
   void AllocateCellTextures(vtkRenderer* ren);
