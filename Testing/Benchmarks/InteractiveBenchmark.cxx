@@ -27,10 +27,31 @@
  *   InteractiveBenchmark [--quick] [--objects N] [--rate FPS] [--drags N]
  *                        [--moves N] [--output DIR] [--json FILE] [--data DIR]
  */
-#include "BenchmarkSupport.h"
+#include "BenchmarkImages.h"
+#include "BenchmarkJson.h"
+#include "BenchmarkStatistics.h"
+#include "BenchmarkTiming.h"
+#include "CameraPose.h"
+#include "MachineInfo.h"
+#include "MeshConversion.h"
+#include "PlotScript.h"
+#include "PolicySelection.h"
+#include "W1CameraPath.h"
+#include "W1Scene.h"
+#include "TestMeshIO.h"
+#include "vtkTOMBuilder.h"
+#include "vtkTOMFieldData.h"
 #include "vtkMultiresolutionPolyDataMapper.h"
 #include "vtkTimeCriticalRenderer.h"
 
+#include <vtkCellArray.h>
+#include <vtkDataArray.h>
+#include <vtkImageData.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+#include <vtkTransform.h>
+#include <vtkUnsignedCharArray.h>
 #include <vtkActor.h>
 #include <vtkCallbackCommand.h>
 #include <vtkCamera.h>
@@ -513,7 +534,7 @@ Summary Summarize(const Session& session)
   if (!times.empty())
   {
     s.Mean = Mean(times);
-    s.Median = MedianOf(times);
+    s.Median = Median(times);
     s.Max = *std::max_element(times.begin(), times.end());
     double variance = 0.0;
     for (double t : times)
@@ -622,12 +643,7 @@ int main(int argc, char* argv[])
       return 2;
     }
     std::filesystem::create_directories(settings.Output);
-    double load[2] = { NaN, NaN };
-    double sample[3];
-    if (getloadavg(sample, 3) > 0)
-    {
-      load[0] = sample[0];
-    }
+    double load[2] = { LoadAverages()[0], NaN };
     Session session(settings);
     std::cerr << "building the scene...\n";
     session.Setup();
@@ -644,10 +660,7 @@ int main(int argc, char* argv[])
       std::cerr << "  drag " << d + 1 << "/" << settings.Drags << " done\n";
     }
     session.CheckRest();
-    if (getloadavg(sample, 3) > 0)
-    {
-      load[1] = sample[0];
-    }
+    load[1] = LoadAverages()[0];
     const Summary s = Summarize(session);
     const double target = 1.0 / settings.Rate;
     std::printf("InteractiveBenchmark: %d objects, %lld triangles%s, interactor rate %.1f/s "

@@ -12,6 +12,8 @@
 //
 //   OptimizerBenchmark [--json path] [--quick] [--repeats N] [--seed S]
 //                      [--sizes n,n,...] [--alphas a,a,...]
+#include "BenchmarkStatistics.h"
+#include "BenchmarkTiming.h"
 #include "BudgetTestUtilities.h"
 
 #include "ActiveSetOptimizer.h"
@@ -38,12 +40,9 @@ using timecritical::ResolutionProblem;
 using timecritical_test::MakeRandomProblem;
 using timecritical_test::NextFrame;
 using timecritical_test::RandomProblem;
-using Clock = std::chrono::steady_clock;
-
-double Seconds(Clock::time_point a, Clock::time_point b)
-{
-  return std::chrono::duration<double>(b - a).count();
-}
+using timecritical::benchmark::Clock;
+using timecritical::benchmark::Median;
+using timecritical::benchmark::Seconds;
 
 /// CPU time of the calling thread (s); wall time where there is no such clock.
 double ThreadSeconds()
@@ -68,16 +67,6 @@ std::vector<double> ParseList(const std::string& text)
     start = end + 1;
   }
   return values;
-}
-
-double Median(std::vector<double> v)
-{
-  if (v.empty())
-  {
-    return 0.0;
-  }
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
 }
 
 double Gap(double f, double reference)

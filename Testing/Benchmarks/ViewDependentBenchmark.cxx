@@ -28,7 +28,20 @@
  * Missed goals are reported, not failed: the exit status is nonzero only for
  * errors.
  */
-#include "BenchmarkSupport.h"
+#include "BenchmarkImages.h"
+#include "BenchmarkJson.h"
+#include "BenchmarkStatistics.h"
+#include "BenchmarkTiming.h"
+#include "CameraPose.h"
+#include "LoopSubdivision.h"
+#include "MachineInfo.h"
+#include "MeshConversion.h"
+#include "PlotScript.h"
+#include "PolicySelection.h"
+#include "W1CameraPath.h"
+#include "W1Scene.h"
+#include "vtkTOMBuilder.h"
+#include "vtkTOMFieldData.h"
 #include "MergeTreeAttributes.h"
 #include "TestMeshIO.h"
 #include "vtkMergeTreeBuilder.h"
@@ -36,11 +49,23 @@
 #include "vtkMultiresolutionPolyDataMapper.h"
 #include "vtkTimeCriticalRenderer.h"
 
+#include <vtkCamera.h>
+#include <vtkCellArray.h>
+#include <vtkDataArray.h>
+#include <vtkImageData.h>
+#include <vtkNew.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+#include <vtkRenderWindow.h>
+#include <vtkRenderer.h>
+#include <vtkSmartPointer.h>
+#include <vtkTransform.h>
+#include <vtkUnsignedCharArray.h>
 #include <vtkActor.h>
 #include <vtkDoubleArray.h>
 #include <vtkFieldData.h>
 #include <vtkLight.h>
-#include <vtkLoopSubdivisionFilter.h>
 #include <vtkMultiBlockDataSet.h>
 #include <vtkPolyDataMapper.h>
 #include <vtkProperty.h>
@@ -489,14 +514,7 @@ LargeObject MakeLargeObject(const Settings& settings)
     if (useIgea)
     {
       input = ToPolyData(tt::RemoveUnusedPoints(tt::WeldPoints(tt::LoadMesh(igea.string()))));
-      if (settings.LoopLevels > 0)
-      {
-        vtkNew<vtkLoopSubdivisionFilter> loop;
-        loop->SetNumberOfSubdivisions(settings.LoopLevels);
-        loop->SetInputData(input);
-        loop->Update();
-        input = loop->GetOutput();
-      }
+      input = LoopSubdivide(input, settings.LoopLevels);
     }
     else
     {
@@ -751,15 +769,15 @@ Statistics ComputeStatistics(const std::vector<FrameRecord>& frames, double targ
     return s;
   }
   s.Mean = Mean(measured);
-  s.Median = MedianOf(measured);
+  s.Median = Median(measured);
   s.Max = *std::max_element(measured.begin(), measured.end());
   s.ShareWithin = static_cast<double>(within) / static_cast<double>(measured.size());
   s.TrianglesMean = Mean(triangles);
   s.TrianglesShare = full > 0.0 ? s.TrianglesMean / full : NaN;
-  s.TrianglesMedianShare = full > 0.0 ? MedianOf(triangles) / full : NaN;
+  s.TrianglesMedianShare = full > 0.0 ? Median(triangles) / full : NaN;
   s.PSNRFrames = static_cast<int>(psnr.size());
   s.PSNRMean = Mean(psnr);
-  s.PSNRMedian = MedianOf(psnr);
+  s.PSNRMedian = Median(psnr);
   s.PSNRMin = psnr.empty() ? NaN : *std::min_element(psnr.begin(), psnr.end());
   s.RefinementMean = Mean(refinement);
   s.RefinementMax = refinement.empty() ? NaN : *std::max_element(refinement.begin(), refinement.end());
@@ -1181,7 +1199,7 @@ MixedResult RunMixed(const Settings& settings, const LargeObject& object)
   MixedResult result;
   const CowTOM cow = MakeCowTOM(settings.DataDirectory);
   const Scene scene = PlaceObjects(settings.MixedObjects, settings.Seed, cow.TOM, cow.Triangles);
-  const CameraPath path(scene, settings.MixedFrames);
+  const W1CameraPath path(scene, settings.MixedFrames);
   result.CowSource = cow.Source;
   result.CowSubstitute = cow.Substitute;
   result.Cows = static_cast<int>(scene.Objects.size());
@@ -1648,12 +1666,7 @@ int main(int argc, char* argv[])
       return 2;
     }
     std::filesystem::create_directories(settings.Output);
-    double load[2] = { NaN, NaN };
-    double sample[3];
-    if (getloadavg(sample, 3) > 0)
-    {
-      load[0] = sample[0];
-    }
+    double load[2] = { LoadAverages()[0], NaN };
 
     std::cerr << "preparing the large object and its merge tree...\n";
     const LargeObject object = MakeLargeObject(settings);
@@ -1695,10 +1708,7 @@ int main(int argc, char* argv[])
     {
       mixed = std::make_unique<MixedResult>(RunMixed(settings, object));
     }
-    if (getloadavg(sample, 3) > 0)
-    {
-      load[1] = sample[0];
-    }
+    load[1] = LoadAverages()[0];
 
     const std::vector<Goal> goals = EvaluateGoals(runs, settings);
     std::printf("ViewDependentBenchmark: %s, %lld triangles, %d levels, %d frames at %dx%d%s\n",

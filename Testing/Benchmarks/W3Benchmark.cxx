@@ -22,12 +22,37 @@
  * Per frame: wall-clock time around Render() (+ WaitForCompletion),
  * triangles drawn, predicted time. Prints and writes w3.json.
  */
-#include "BenchmarkSupport.h"
+#include "BenchmarkImages.h"
+#include "BenchmarkJson.h"
+#include "BenchmarkStatistics.h"
+#include "BenchmarkTiming.h"
+#include "CameraPose.h"
+#include "MachineInfo.h"
+#include "MeshConversion.h"
+#include "PlotScript.h"
+#include "PolicySelection.h"
+#include "W1CameraPath.h"
+#include "BenchmarkRandom.h"
+#include "W1Scene.h"
+#include "TestMeshIO.h"
+#include "vtkTOMBuilder.h"
 
 #include "vtkMultiresolutionPolyDataMapper.h"
 #include "vtkTOMFieldData.h"
 #include "vtkTimeCriticalRenderer.h"
 
+#include <vtkCamera.h>
+#include <vtkDataArray.h>
+#include <vtkImageData.h>
+#include <vtkNew.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+#include <vtkRenderWindow.h>
+#include <vtkRenderer.h>
+#include <vtkSmartPointer.h>
+#include <vtkTransform.h>
+#include <vtkUnsignedCharArray.h>
 #include <vtkActor.h>
 #include <vtkCellArray.h>
 #include <vtkFieldData.h>
@@ -117,14 +142,6 @@ double PeakRSS()
     }
   }
   return 0.0;
-}
-
-std::string LoadAverage()
-{
-  std::ifstream in("/proc/loadavg");
-  std::string one, five, fifteen;
-  in >> one >> five >> fifteen;
-  return one + " " + five + " " + fifteen;
 }
 
 struct Kind
@@ -451,7 +468,7 @@ int main(int argc, char* argv[])
   try
   {
     std::filesystem::create_directories(output);
-    const std::string loadStart = LoadAverage();
+    const std::string loadStart = LoadAverageText();
     std::vector<Memory> memory;
     memory.push_back(Sample("start"));
     const bool shared = std::filesystem::is_regular_file(std::filesystem::path(data) / "cow.obj");
@@ -508,7 +525,7 @@ int main(int argc, char* argv[])
         placed.push_back(p);
       }
     }
-    Random random(2026u);
+    BenchmarkRandom random(2026u);
     for (size_t i = placed.size(); i > 1; --i)
     {
       const size_t j = static_cast<size_t>(random.Uniform(0.0, static_cast<double>(i)));
@@ -608,7 +625,7 @@ int main(int argc, char* argv[])
       records.push_back(record);
     }
     memory.push_back(Sample("after the flight"));
-    const std::string loadEnd = LoadAverage();
+    const std::string loadEnd = LoadAverageText();
 
     std::vector<double> times, triangles;
     int within = 0;
@@ -618,7 +635,7 @@ int main(int argc, char* argv[])
       triangles.push_back(static_cast<double>(r.Triangles));
       within += r.Measured <= 1.1 * target;
     }
-    const double mean = Mean(times), median = MedianOf(times);
+    const double mean = Mean(times), median = Median(times);
     const double maximum = *std::max_element(times.begin(), times.end());
     const double share = static_cast<double>(within) / records.size();
 

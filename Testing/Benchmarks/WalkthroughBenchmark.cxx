@@ -23,15 +23,24 @@
  *   WalkthroughBenchmark [--quick] [--frames N] [--objects N] [--policies LIST]
  *                        [--target S] [--output DIR] [--json FILE] [--data DIR]
  */
-#include "BenchmarkSupport.h"
+#include "BenchmarkImages.h"
+#include "BenchmarkJson.h"
+#include "BenchmarkStatistics.h"
+#include "BenchmarkTiming.h"
+#include "CameraPose.h"
+#include "MachineInfo.h"
+#include "MeshConversion.h"
+#include "PlotScript.h"
+#include "PolicySelection.h"
+#include "W1CameraPath.h"
+#include "W1Scene.h"
+#include "W1SceneExport.h"
+#include "W1SceneSpecification.h"
 #include "TestMeshIO.h"
 #include "vtkMultiresolutionPolyDataMapper.h"
 #include "vtkTOMBuilder.h"
 #include "vtkTOMFieldData.h"
 #include "vtkTimeCriticalRenderer.h"
-
-#include <OpenImageIO/imagebuf.h>
-#include <OpenImageIO/imagebufalgo.h>
 
 #include <vtkActor.h>
 #include <vtkCamera.h>
@@ -44,12 +53,10 @@
 #include <vtkMultiBlockDataSet.h>
 #include <vtkNew.h>
 #include <vtkObjectFactory.h>
-#include <vtkPNGWriter.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkPolyDataMapper.h>
-#include <vtkPolyDataNormals.h>
 #include <vtkProperty.h>
 #include <vtkQuadricDecimation.h>
 #include <vtkRenderWindow.h>
@@ -141,16 +148,17 @@ std::string CanonicalPolicyName(const std::string& name)
 struct Settings
 {
   bool Quick = false;
-  int Frames = 240;
-  int Objects = 529;
+  int Frames = W1SceneSpecification::Get().DefaultFrames;
+  int Objects = W1SceneSpecification::Get().DefaultObjects;
   double Target = 0.1;
   int WarmupFrames = 3;
   /// vtkLODProp3D tries every never-rendered LOD once before it selects by time.
   int LODWarmupFrames = 8;
-  unsigned Seed = 20001;
+  unsigned Seed = W1SceneSpecification::Get().DefaultSeed;
   std::string Output = "walkthrough-output";
   std::string Json; ///< default: Output/walkthrough.json
   std::string DataDirectory = TIMECRITICAL_SHARED_DATA_DIR;
+  std::string SceneFile; ///< --write-scene: write W1's scene there and stop
   std::vector<const PolicyInfo*> Policies;
   bool Plot = true;
   /// Reddy's velocity and eccentricity factors (perceptual, not what PSNR rewards).
@@ -175,6 +183,8 @@ void PrintUsage()
        "  --data DIR      folder with cow.obj (default " TIMECRITICAL_SHARED_DATA_DIR ")\n"
        "  --seed N        seed of the object placement (default 20001)\n"
        "  --no-plot       do not run scripts/plot_walkthrough.py\n"
+       "  --write-scene FILE  write the scene (objects, transforms, colours, camera\n"
+       "                  path) as JSON and stop, without rendering\n"
        "  --no-perceptual TimeCritical without Reddy's velocity and eccentricity factors\n"
        "  --safety K      TimeCritical's safety factor (default 1.5)\n"
        "  --family N      degradation family: 0 Hitchner (default), 1 Funkhouser,\n"
@@ -260,6 +270,10 @@ Settings ParseArguments(int argc, char* argv[])
     else if (arg == "--data")
     {
       settings.DataDirectory = value();
+    }
+    else if (arg == "--write-scene")
+    {
+      settings.SceneFile = value();
     }
     else if (arg == "--no-plot")
     {
@@ -470,7 +484,7 @@ void ComputeHeavyStatistics(
   }
   s.HeavyCV = std::sqrt(variance / static_cast<double>(times.size())) / s.HeavyMean;
   s.HeavyShareWithin = static_cast<double>(within) / static_cast<double>(times.size());
-  s.HeavyPSNRMedian = MedianOf(psnr);
+  s.HeavyPSNRMedian = Median(psnr);
 }
 
 Statistics ComputeStatistics(const std::vector<FrameRecord>& frames, double target)
@@ -516,7 +530,7 @@ Statistics ComputeStatistics(const std::vector<FrameRecord>& frames, double targ
     return s;
   }
   s.Mean = Mean(measured);
-  s.Median = MedianOf(measured);
+  s.Median = Median(measured);
   s.Min = *std::min_element(measured.begin(), measured.end());
   s.Max = *std::max_element(measured.begin(), measured.end());
   double variance = 0.0;
@@ -534,7 +548,7 @@ Statistics ComputeStatistics(const std::vector<FrameRecord>& frames, double targ
   s.OptimizerMax = optimizer.empty() ? NaN : *std::max_element(optimizer.begin(), optimizer.end());
   s.IterationsMean = Mean(iterations);
   s.PSNRMean = Mean(psnr);
-  s.PSNRMedian = MedianOf(psnr);
+  s.PSNRMedian = Median(psnr);
   s.PSNRMin = psnr.empty() ? NaN : *std::min_element(psnr.begin(), psnr.end());
   s.TrianglesMean = Mean(triangles);
   return s;
@@ -554,7 +568,7 @@ class Walkthrough
 {
 public:
   Walkthrough(const Settings& settings, const ObjectMesh& object, const Scene& scene,
-    const CameraPath& path)
+    const W1CameraPath& path)
     : Options(settings)
     , Object(object)
     , Layout(scene)
@@ -602,7 +616,7 @@ private:
   const Settings& Options;
   const ObjectMesh& Object;
   const Scene& Layout;
-  const CameraPath& Path;
+  const W1CameraPath& Path;
 
   vtkNew<vtkRenderWindow> Window;
   vtkNew<vtkCamera> Camera;
@@ -1037,7 +1051,7 @@ void Walkthrough::MeasureNoiseFloor()
   }
   this->Noise.Frames = frames;
   this->Noise.Triangles = this->Mapper->GetRenderedTriangles();
-  this->Noise.Median = MedianOf(times);
+  this->Noise.Median = Median(times);
   this->Noise.Mean = Mean(times);
   this->Noise.Max = *std::max_element(times.begin(), times.end());
   double variance = 0.0;
@@ -1208,7 +1222,7 @@ void PrintTable(const std::vector<PolicyRun>& runs, const std::vector<Goal>& goa
 }
 
 void WriteJson(const Settings& settings, const ObjectMesh& object, const Scene& scene,
-  const CameraPath& path, const Walkthrough& walk, const std::vector<PolicyRun>& runs,
+  const W1CameraPath& path, const Walkthrough& walk, const std::vector<PolicyRun>& runs,
   const std::vector<Goal>& goals, const double load[2])
 {
   std::ofstream out(settings.Json);
@@ -1371,6 +1385,16 @@ int main(int argc, char* argv[])
   try
   {
     const Settings settings = ParseArguments(argc, argv);
+    if (!settings.SceneFile.empty())
+    {
+      const CowTOM object = MakeCowTOM(settings.DataDirectory);
+      const Scene scene =
+        PlaceObjects(settings.Objects, settings.Seed, object.TOM, object.Triangles);
+      WriteW1SceneJson(settings.SceneFile, object, scene, W1CameraPath(scene, settings.Frames),
+        settings.Frames, settings.Seed);
+      std::cerr << "scene: " << settings.SceneFile << "\n";
+      return 0;
+    }
     if (!std::getenv("DISPLAY"))
     {
       std::cerr << "WalkthroughBenchmark needs an X display (VTK here is an X build): run it "
@@ -1378,17 +1402,12 @@ int main(int argc, char* argv[])
       return 2;
     }
     std::filesystem::create_directories(settings.Output);
-    double load[2] = { NaN, NaN };
-    double sample[3];
-    if (getloadavg(sample, 3) > 0)
-    {
-      load[0] = sample[0];
-    }
+    double load[2] = { LoadAverages()[0], NaN };
 
     std::cerr << "building the object's TOM and LODs...\n";
     const ObjectMesh object = MakeObject(settings);
     const Scene scene = PlaceObjects(settings.Objects, settings.Seed, object.TOM, object.Triangles);
-    const CameraPath path(scene, settings.Frames);
+    const W1CameraPath path(scene, settings.Frames);
     std::cerr << "scene: " << scene.Objects.size() << " objects x " << object.Triangles
               << " triangles = " << scene.Triangles << " triangles (" << object.Source << ")\n";
 
@@ -1413,10 +1432,7 @@ int main(int argc, char* argv[])
     }
     std::cerr << "noise floor: one frame rendered again and again...\n";
     walk.MeasureNoiseFloor();
-    if (getloadavg(sample, 3) > 0)
-    {
-      load[1] = sample[0];
-    }
+    load[1] = LoadAverages()[0];
 
     const std::vector<Goal> goals = EvaluateGoals(runs, settings.Target, walk.Noise);
     std::printf("WalkthroughBenchmark: %zu objects, %lld triangles, %d frames, target %.0f ms%s\n",
