@@ -40,6 +40,7 @@
 #include "PolicySelection.h"
 #include "W1CameraPath.h"
 #include "W1Scene.h"
+#include "W1SceneSpecification.h"
 #include "vtkTOMBuilder.h"
 #include "vtkTOMFieldData.h"
 #include "MergeTreeAttributes.h"
@@ -168,11 +169,11 @@ struct Settings
   /// Shading weight of the merge tree's errors (MergeTreeErrorOptions); < 0: the builder's.
   double ShadingWeight = -1.0;
   bool Mixed = false;
-  int MixedObjects = 529;
+  int MixedObjects = W1SceneSpecification::Get().DefaultObjects;
   int MixedFrames = 0;        ///< 0: Frames
   int MixedReferenceStep = 6; ///< PSNR of the mixed scene on every k-th frame
   bool MixedCows = true;      ///< also the cows alone (W1's TimeCritical) on the mixed path
-  unsigned Seed = 20001;
+  unsigned Seed = W1SceneSpecification::Get().DefaultSeed;
   std::string W1Json;
   std::string Output = "viewdependent-output";
   std::string Json; ///< default: Output/viewdependent.json

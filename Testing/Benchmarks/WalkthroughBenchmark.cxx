@@ -23,6 +23,7 @@
  *   WalkthroughBenchmark [--quick] [--frames N] [--objects N] [--policies LIST]
  *                        [--target S] [--output DIR] [--json FILE] [--data DIR]
  */
+#include "BenchmarkArguments.h"
 #include "BenchmarkImages.h"
 #include "BenchmarkJson.h"
 #include "BenchmarkStatistics.h"
@@ -194,108 +195,34 @@ void PrintUsage()
 Settings ParseArguments(int argc, char* argv[])
 {
   Settings settings;
-  bool framesSet = false;
-  bool objectsSet = false;
+  bool help = false, framesSet = false, objectsSet = false, noPlot = false, noPerceptual = false;
   std::string policies;
-  for (int i = 1; i < argc; ++i)
+  BenchmarkArguments arguments(argc, argv);
+  arguments.AddFlag("--help", help);
+  arguments.AddFlag("-h", help);
+  arguments.AddFlag("--quick", settings.Quick);
+  arguments.AddInteger("--frames", settings.Frames, 10, 1000000, &framesSet);
+  arguments.AddInteger("--objects", settings.Objects, 1, 1000000, &objectsSet);
+  arguments.AddInteger("--warmup", settings.WarmupFrames, 0);
+  arguments.AddUnsigned("--seed", settings.Seed);
+  arguments.AddNumber("--target", settings.Target, [](double x) { return x > 0.0; });
+  arguments.AddText("--policies", policies);
+  arguments.AddText("--output", settings.Output);
+  arguments.AddText("--json", settings.Json);
+  arguments.AddText("--data", settings.DataDirectory);
+  arguments.AddText("--write-scene", settings.SceneFile);
+  arguments.AddFlag("--no-plot", noPlot);
+  arguments.AddFlag("--no-perceptual", noPerceptual);
+  arguments.AddNumber("--safety", settings.SafetyFactor);
+  arguments.AddInteger("--family", settings.Family, 0, 3);
+  arguments.Parse();
+  if (help)
   {
-    const std::string arg = argv[i];
-    const auto value = [&]() -> std::string {
-      if (i + 1 >= argc)
-      {
-        throw std::runtime_error("missing value after " + arg);
-      }
-      return argv[++i];
-    };
-    const auto integer = [&](int minimum) {
-      const std::string text = value();
-      char* end = nullptr;
-      const long parsed = std::strtol(text.c_str(), &end, 10);
-      if (end == text.c_str() || *end != '\0' || parsed < minimum || parsed > 1000000)
-      {
-        throw std::runtime_error("bad value for " + arg + ": " + text);
-      }
-      return static_cast<int>(parsed);
-    };
-    if (arg == "--help" || arg == "-h")
-    {
-      PrintUsage();
-      std::exit(0);
-    }
-    else if (arg == "--quick")
-    {
-      settings.Quick = true;
-    }
-    else if (arg == "--frames")
-    {
-      settings.Frames = integer(10);
-      framesSet = true;
-    }
-    else if (arg == "--objects")
-    {
-      settings.Objects = integer(1);
-      objectsSet = true;
-    }
-    else if (arg == "--warmup")
-    {
-      settings.WarmupFrames = integer(0);
-    }
-    else if (arg == "--seed")
-    {
-      settings.Seed = static_cast<unsigned>(integer(0));
-    }
-    else if (arg == "--target")
-    {
-      const std::string text = value();
-      char* end = nullptr;
-      settings.Target = std::strtod(text.c_str(), &end);
-      if (end == text.c_str() || *end != '\0' || !(settings.Target > 0.0) ||
-        !std::isfinite(settings.Target))
-      {
-        throw std::runtime_error("bad value for --target: " + text);
-      }
-    }
-    else if (arg == "--policies")
-    {
-      policies = value();
-    }
-    else if (arg == "--output")
-    {
-      settings.Output = value();
-    }
-    else if (arg == "--json")
-    {
-      settings.Json = value();
-    }
-    else if (arg == "--data")
-    {
-      settings.DataDirectory = value();
-    }
-    else if (arg == "--write-scene")
-    {
-      settings.SceneFile = value();
-    }
-    else if (arg == "--no-plot")
-    {
-      settings.Plot = false;
-    }
-    else if (arg == "--no-perceptual")
-    {
-      settings.Perceptual = false;
-    }
-    else if (arg == "--safety")
-    {
-      settings.SafetyFactor = std::stod(value());
-    }
-    else if (arg == "--family")
-    {
-      settings.Family = std::stoi(value());
-    }
-    else
-    {
-      throw std::runtime_error("unknown option " + arg + " (see --help)");
-    }
+    PrintUsage();
+    std::exit(0);
   }
+  settings.Plot = !noPlot;
+  settings.Perceptual = !noPerceptual;
   if (settings.Quick)
   {
     settings.Frames = framesSet ? settings.Frames : 30;
