@@ -12,6 +12,7 @@
 //
 //   OptimizerBenchmark [--json path] [--quick] [--repeats N] [--seed S]
 //                      [--sizes n,n,...] [--alphas a,a,...]
+#include "BenchmarkArguments.h"
 #include "BenchmarkStatistics.h"
 #include "BenchmarkTiming.h"
 #include "BudgetTestUtilities.h"
@@ -200,40 +201,34 @@ int main(int argc, char** argv)
   int repeats = 21;
   unsigned seed = 1;
   std::vector<double> onlySizes, onlyAlphas;
-  for (int i = 1; i < argc; ++i)
+  bool help = false;
+  std::string sizesText, alphasText;
+  timecritical::benchmark::BenchmarkArguments arguments(argc, argv);
+  arguments.AddFlag("--help", help);
+  arguments.AddText("--json", json);
+  arguments.AddFlag("--quick", quick);
+  arguments.AddInteger("--repeats", repeats, 1);
+  arguments.AddUnsigned("--seed", seed, 0, 4294967295u);
+  arguments.AddText("--sizes", sizesText);
+  arguments.AddText("--alphas", alphasText);
+  const char* usage = "usage: OptimizerBenchmark [--json path] [--quick] [--repeats N] [--seed S]\n"
+                      "                          [--sizes n,n,...] [--alphas a,a,...]\n";
+  try
   {
-    const std::string a = argv[i];
-    if (a == "--json" && i + 1 < argc)
-    {
-      json = argv[++i];
-    }
-    else if (a == "--quick")
-    {
-      quick = true;
-    }
-    else if (a == "--repeats" && i + 1 < argc)
-    {
-      repeats = std::max(1, std::atoi(argv[++i]));
-    }
-    else if (a == "--seed" && i + 1 < argc)
-    {
-      seed = static_cast<unsigned>(std::atoi(argv[++i]));
-    }
-    else if (a == "--sizes" && i + 1 < argc)
-    {
-      onlySizes = ParseList(argv[++i]);
-    }
-    else if (a == "--alphas" && i + 1 < argc)
-    {
-      onlyAlphas = ParseList(argv[++i]);
-    }
-    else
-    {
-      std::printf("usage: OptimizerBenchmark [--json path] [--quick] [--repeats N] [--seed S]\n"
-                  "                          [--sizes n,n,...] [--alphas a,a,...]\n");
-      return a == "--help" ? 0 : 2;
-    }
+    arguments.Parse();
   }
+  catch (const std::runtime_error& error)
+  {
+    std::printf("%s\n%s", error.what(), usage);
+    return 2;
+  }
+  if (help)
+  {
+    std::printf("%s", usage);
+    return 0;
+  }
+  onlySizes = ParseList(sizesText);
+  onlyAlphas = ParseList(alphasText);
   std::vector<std::size_t> sizes = { 100, 529, 1000, 10000, 100000 };
   if (quick)
   {

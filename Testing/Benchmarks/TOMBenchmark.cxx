@@ -26,6 +26,7 @@
  *   TOMBenchmark [--quick] [--quality-only] [--mesh NAME]... [--json FILE] [--data DIR]
  *                [--hausdorff-all]
  */
+#include "BenchmarkArguments.h"
 #include "BenchmarkJson.h"
 #include "BenchmarkStatistics.h"
 #include "BenchmarkTiming.h"
@@ -1732,46 +1733,38 @@ enum class Parsed
 
 Parsed ParseArguments(int argc, char* argv[], Settings& settings)
 {
-  for (int i = 1; i < argc; ++i)
+  bool help = false, hausdorffAll = false;
+  BenchmarkArguments arguments(argc, argv);
+  arguments.AddFlag("--help", help);
+  arguments.AddFlag("-h", help);
+  arguments.AddFlag("--quick", settings.Quick);
+  arguments.AddFlag("--quality-only", settings.QualityOnly);
+  arguments.AddRepeatedText("--mesh", settings.MeshNames);
+  arguments.AddText("--json", settings.JsonPath);
+  arguments.AddText("--data", settings.DataDirectory);
+  arguments.AddFlag("--hausdorff-all", hausdorffAll);
+  try
   {
-    const std::string arg = argv[i];
-    const bool hasValue = i + 1 < argc;
-    if (arg == "--quick")
-    {
-      settings.Quick = true;
-      settings.MinMeasureSeconds = 0.02;
-    }
-    else if (arg == "--quality-only")
-    {
-      settings.QualityOnly = true;
-    }
-    else if (arg == "--mesh" && hasValue)
-    {
-      settings.MeshNames.push_back(argv[++i]);
-    }
-    else if (arg == "--json" && hasValue)
-    {
-      settings.JsonPath = argv[++i];
-    }
-    else if (arg == "--data" && hasValue)
-    {
-      settings.DataDirectory = argv[++i];
-    }
-    else if (arg == "--hausdorff-all")
-    {
-      settings.HausdorffMaxTriangles = std::numeric_limits<size_t>::max();
-    }
-    else if (arg == "--help" || arg == "-h")
-    {
-      PrintUsage(std::cout);
-      return Parsed::Help;
-    }
-    else
-    {
-      std::cerr << "unknown or incomplete argument: " << arg << "\n";
-      PrintUsage(std::cerr);
-      return Parsed::Error;
-    }
+    arguments.Parse();
+  }
+  catch (const std::runtime_error& error)
+  {
+    std::cerr << error.what() << "\n";
+    PrintUsage(std::cerr);
+    return Parsed::Error;
+  }
+  if (help)
+  {
+    PrintUsage(std::cout);
+    return Parsed::Help;
+  }
+  if (settings.Quick)
+  {
+    settings.MinMeasureSeconds = 0.02;
+  }
+  if (hausdorffAll)
+  {
+    settings.HausdorffMaxTriangles = std::numeric_limits<size_t>::max();
   }
   return Parsed::Run;
 }

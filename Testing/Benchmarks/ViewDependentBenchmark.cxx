@@ -28,6 +28,7 @@
  * Missed goals are reported, not failed: the exit status is nonzero only for
  * errors.
  */
+#include "BenchmarkArguments.h"
 #include "BenchmarkImages.h"
 #include "BenchmarkJson.h"
 #include "BenchmarkStatistics.h"
@@ -219,134 +220,40 @@ void PrintUsage()
 Settings ParseArguments(int argc, char* argv[])
 {
   Settings settings;
-  bool framesSet = false, mixedObjectsSet = false;
+  bool help = false, framesSet = false, mixedObjectsSet = false, noPlot = false;
   std::string policies;
-  for (int i = 1; i < argc; ++i)
+  const auto atLeast = [](double minimum) { return [minimum](double x) { return x >= minimum; }; };
+  BenchmarkArguments arguments(argc, argv);
+  arguments.AddFlag("--help", help);
+  arguments.AddFlag("-h", help);
+  arguments.AddFlag("--quick", settings.Quick);
+  arguments.AddInteger("--frames", settings.Frames, 10, 1000000, &framesSet);
+  arguments.AddText("--policies", policies);
+  arguments.AddNumber("--tau", settings.Tau, atLeast(0.0));
+  arguments.AddNumber("--budget-tau", settings.BudgetTau, atLeast(0.0));
+  arguments.AddNumber("--refinement-limit", settings.RefinementLimit, atLeast(0.0));
+  arguments.AddNumber("--target", settings.Target, atLeast(1e-3));
+  arguments.AddInteger("--warmup", settings.WarmupFrames, 0);
+  arguments.AddInteger("--loop", settings.LoopLevels, 0);
+  arguments.AddFlag("--rebuild", settings.Rebuild);
+  arguments.AddNumber("--shading-weight", settings.ShadingWeight, atLeast(0.0));
+  arguments.AddFlag("--mixed", settings.Mixed);
+  arguments.AddInteger("--mixed-objects", settings.MixedObjects, 1, 1000000, &mixedObjectsSet);
+  arguments.AddInteger("--mixed-frames", settings.MixedFrames, 10);
+  arguments.AddInteger("--mixed-step", settings.MixedReferenceStep, 1);
+  arguments.AddFlag("--no-mixed-cows", settings.MixedCows, false);
+  arguments.AddText("--w1-json", settings.W1Json);
+  arguments.AddText("--output", settings.Output);
+  arguments.AddText("--json", settings.Json);
+  arguments.AddText("--data", settings.DataDirectory);
+  arguments.AddFlag("--no-plot", noPlot);
+  arguments.Parse();
+  if (help)
   {
-    const std::string arg = argv[i];
-    const auto value = [&]() -> std::string {
-      if (i + 1 >= argc)
-      {
-        throw std::runtime_error("missing value after " + arg);
-      }
-      return argv[++i];
-    };
-    const auto integer = [&](int minimum) {
-      const std::string text = value();
-      char* end = nullptr;
-      const long parsed = std::strtol(text.c_str(), &end, 10);
-      if (end == text.c_str() || *end != '\0' || parsed < minimum || parsed > 1000000)
-      {
-        throw std::runtime_error("bad value for " + arg + ": " + text);
-      }
-      return static_cast<int>(parsed);
-    };
-    const auto real = [&](double minimum) {
-      const std::string text = value();
-      char* end = nullptr;
-      const double parsed = std::strtod(text.c_str(), &end);
-      if (end == text.c_str() || *end != '\0' || !std::isfinite(parsed) || parsed < minimum)
-      {
-        throw std::runtime_error("bad value for " + arg + ": " + text);
-      }
-      return parsed;
-    };
-    if (arg == "--help" || arg == "-h")
-    {
-      PrintUsage();
-      std::exit(0);
-    }
-    else if (arg == "--quick")
-    {
-      settings.Quick = true;
-    }
-    else if (arg == "--frames")
-    {
-      settings.Frames = integer(10);
-      framesSet = true;
-    }
-    else if (arg == "--policies")
-    {
-      policies = value();
-    }
-    else if (arg == "--tau")
-    {
-      settings.Tau = real(0.0);
-    }
-    else if (arg == "--budget-tau")
-    {
-      settings.BudgetTau = real(0.0);
-    }
-    else if (arg == "--refinement-limit")
-    {
-      settings.RefinementLimit = real(0.0);
-    }
-    else if (arg == "--target")
-    {
-      settings.Target = real(1e-3);
-    }
-    else if (arg == "--warmup")
-    {
-      settings.WarmupFrames = integer(0);
-    }
-    else if (arg == "--loop")
-    {
-      settings.LoopLevels = integer(0);
-    }
-    else if (arg == "--rebuild")
-    {
-      settings.Rebuild = true;
-    }
-    else if (arg == "--shading-weight")
-    {
-      settings.ShadingWeight = real(0.0);
-    }
-    else if (arg == "--mixed")
-    {
-      settings.Mixed = true;
-    }
-    else if (arg == "--mixed-objects")
-    {
-      settings.MixedObjects = integer(1);
-      mixedObjectsSet = true;
-    }
-    else if (arg == "--mixed-frames")
-    {
-      settings.MixedFrames = integer(10);
-    }
-    else if (arg == "--mixed-step")
-    {
-      settings.MixedReferenceStep = integer(1);
-    }
-    else if (arg == "--no-mixed-cows")
-    {
-      settings.MixedCows = false;
-    }
-    else if (arg == "--w1-json")
-    {
-      settings.W1Json = value();
-    }
-    else if (arg == "--output")
-    {
-      settings.Output = value();
-    }
-    else if (arg == "--json")
-    {
-      settings.Json = value();
-    }
-    else if (arg == "--data")
-    {
-      settings.DataDirectory = value();
-    }
-    else if (arg == "--no-plot")
-    {
-      settings.Plot = false;
-    }
-    else
-    {
-      throw std::runtime_error("unknown option " + arg + " (see --help)");
-    }
+    PrintUsage();
+    std::exit(0);
   }
+  settings.Plot = !noPlot;
   if (settings.Quick)
   {
     settings.Frames = framesSet ? settings.Frames : 24;

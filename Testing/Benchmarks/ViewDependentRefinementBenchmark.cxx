@@ -20,6 +20,7 @@
 // times and keeps each frame's fastest. Under callgrind (--instr-atstart=no)
 // only the unbounded W2-like budget updates are instrumented, or with
 // --w2-fixed (implies --w2-only) the fixed-accuracy updates.
+#include "BenchmarkArguments.h"
 #include "LoopSubdivision.h"
 #include "MergeTreeAttributes.h"
 #include "TOMBuilder.h"
@@ -73,13 +74,6 @@ void PrintUsage(FILE* out, const char* program)
 }
 
 /// Parses a whole argument as a number (false when it is not one).
-bool ParseNumber(const char* text, double& value)
-{
-  char* end = nullptr;
-  value = std::strtod(text, &end);
-  return end != text && *end == '\0' && std::isfinite(value);
-}
-
 int Run(int argc, char** argv);
 }
 
@@ -108,59 +102,37 @@ int Run(int argc, char** argv)
   bool plain = false;
   int repeat = 1;
   double limit = 0.005;
-  for (int i = 1; i < argc; ++i)
+  bool help = false, w2FixedFlag = false;
+  benchmark::BenchmarkArguments arguments(argc, argv);
+  arguments.AddFlag("--help", help);
+  arguments.AddFlag("-h", help);
+  arguments.AddText("--json", json);
+  arguments.AddInteger("--loop", loops, 0, 4);
+  arguments.AddNumber("--limit", limit, [](double x) { return x >= 0.0; });
+  arguments.AddFlag("--w2-only", w2Only);
+  arguments.AddFlag("--w2-fixed", w2FixedFlag);
+  arguments.AddFlag("--plain", plain);
+  arguments.AddInteger("--repeat", repeat, 1, 100);
+  arguments.AddPositional(path);
+  try
   {
-    const std::string a = argv[i];
-    double number = 0.0;
-    if (a == "--help" || a == "-h")
-    {
-      PrintUsage(stdout, argv[0]);
-      return 0;
-    }
-    else if (a == "--json" && i + 1 < argc)
-    {
-      json = argv[++i];
-    }
-    else if (a == "--loop" && i + 1 < argc && ParseNumber(argv[i + 1], number) && number >= 0 &&
-      number <= 4 && number == std::floor(number))
-    {
-      loops = int(number);
-      ++i;
-    }
-    else if (a == "--limit" && i + 1 < argc && ParseNumber(argv[i + 1], number) && number >= 0)
-    {
-      limit = number;
-      ++i;
-    }
-    else if (a == "--w2-only")
-    {
-      w2Only = true;
-    }
-    else if (a == "--w2-fixed")
-    {
-      w2Only = true;
-      w2Fixed = true;
-    }
-    else if (a == "--plain")
-    {
-      plain = true;
-    }
-    else if (a == "--repeat" && i + 1 < argc && ParseNumber(argv[i + 1], number) && number >= 1 &&
-      number <= 100 && number == std::floor(number))
-    {
-      repeat = int(number);
-      ++i;
-    }
-    else if (a.empty() || a[0] == '-')
-    {
-      std::fprintf(stderr, "%s: bad or incomplete argument '%s'\n", argv[0], a.c_str());
-      PrintUsage(stderr, argv[0]);
-      return 2;
-    }
-    else
-    {
-      path = a;
-    }
+    arguments.Parse();
+  }
+  catch (const std::runtime_error& error)
+  {
+    std::fprintf(stderr, "%s: %s\n", argv[0], error.what());
+    PrintUsage(stderr, argv[0]);
+    return 2;
+  }
+  if (help)
+  {
+    PrintUsage(stdout, argv[0]);
+    return 0;
+  }
+  if (w2FixedFlag)
+  {
+    w2Only = true;
+    w2Fixed = true;
   }
   testing::TriangleMesh mesh =
     testing::RemoveUnusedPoints(testing::WeldPoints(testing::LoadMesh(path)));

@@ -22,6 +22,7 @@
  * Per frame: wall-clock time around Render() (+ WaitForCompletion),
  * triangles drawn, predicted time. Prints and writes w3.json.
  */
+#include "BenchmarkArguments.h"
 #include "BenchmarkImages.h"
 #include "BenchmarkJson.h"
 #include "BenchmarkStatistics.h"
@@ -409,62 +410,52 @@ void Usage()
                "  --scale F      replicas per kind times F (default 1; --quick: 0.02)\n"
                "  --warmup N     untimed frames at the first camera after the first render\n"
                "                 (default 3, as W1)\n"
-               "  --quick        a small scene, 20 frames (smoke test)\n"
+               "  --quick        a small scene (--scale 0.02), 20 frames (smoke test)\n"
                "  --no-plot      accepted for scripts/benchmark-runner.sh (there is no plot)\n";
 }
 } // namespace
 
 int main(int argc, char* argv[])
 {
-  std::filesystem::path output = "w3-output";
+  std::string outputText = "w3-output";
   std::string data = TIMECRITICAL_SHARED_DATA_DIR;
   int frames = 120;
   double target = 0.1;
   double scale = 1.0;
   int warmup = 3;
-  for (int i = 1; i < argc; ++i)
+  bool help = false, quick = false, noPlot = false, framesSet = false, scaleSet = false;
+  try
   {
-    const std::string arg = argv[i];
-    auto next = [&]() -> std::string
-    {
-      if (i + 1 >= argc)
-      {
-        throw std::runtime_error(arg + " needs a value");
-      }
-      return argv[++i];
-    };
-    if (arg == "--output")
-      output = next();
-    else if (arg == "--data")
-      data = next();
-    else if (arg == "--frames")
-      frames = std::max(2, std::stoi(next()));
-    else if (arg == "--target")
-      target = std::stod(next());
-    else if (arg == "--warmup")
-      warmup = std::max(0, std::stoi(next()));
-    else if (arg == "--scale")
-      scale = std::stod(next());
-    else if (arg == "--quick")
-    {
-      scale = 0.02;
-      frames = 20;
-    }
-    else if (arg == "--no-plot")
-    {
-    }
-    else if (arg == "--help" || arg == "-h")
-    {
-      Usage();
-      return 0;
-    }
-    else
-    {
-      std::cerr << "unknown option " << arg << "\n";
-      Usage();
-      return 2;
-    }
+    BenchmarkArguments arguments(argc, argv);
+    arguments.AddFlag("--help", help);
+    arguments.AddFlag("-h", help);
+    arguments.AddFlag("--quick", quick);
+    arguments.AddFlag("--no-plot", noPlot); // accepted for scripts/benchmark-runner.sh
+    arguments.AddText("--output", outputText);
+    arguments.AddText("--data", data);
+    arguments.AddInteger("--frames", frames, 2, 1000000, &framesSet);
+    arguments.AddNumber("--target", target, [](double x) { return x > 0.0; });
+    arguments.AddInteger("--warmup", warmup, 0);
+    arguments.AddNumber("--scale", scale, [](double x) { return x > 0.0; }, &scaleSet);
+    arguments.Parse();
   }
+  catch (const std::exception& error)
+  {
+    std::cerr << "W3Benchmark: " << error.what() << "\n";
+    Usage();
+    return 2;
+  }
+  if (help)
+  {
+    Usage();
+    return 0;
+  }
+  if (quick)
+  {
+    scale = scaleSet ? scale : 0.02;
+    frames = framesSet ? frames : 20;
+  }
+  const std::filesystem::path output = outputText;
   try
   {
     std::filesystem::create_directories(output);

@@ -3,6 +3,7 @@
 
 #include <vtksys/CommandLineArguments.hxx>
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -81,6 +82,17 @@ void BenchmarkArguments::AddText(const std::string& name, std::string& text, boo
     given);
 }
 
+void BenchmarkArguments::AddRepeatedText(const std::string& name, std::vector<std::string>& texts)
+{
+  this->Add(
+    name, true,
+    [&texts](const char* value) {
+      texts.emplace_back(value ? value : "");
+      return true;
+    },
+    nullptr);
+}
+
 void BenchmarkArguments::AddInteger(
   const std::string& name, int& value, int minimum, int maximum, bool* given)
 {
@@ -138,6 +150,11 @@ void BenchmarkArguments::AddNumber(
     given);
 }
 
+void BenchmarkArguments::AddPositional(std::string& text)
+{
+  this->Positional = &text;
+}
+
 int BenchmarkArguments::Callback(const char*, const char* value, void* data)
 {
   Option& option = *static_cast<Option*>(data);
@@ -179,11 +196,18 @@ void BenchmarkArguments::Parse()
   char** unused = nullptr;
   parser.GetUnusedArguments(&count, &unused);
   // The first unused argument is the program's name.
-  const std::string unknown = count > 1 ? unused[1] : "";
+  std::vector<std::string> rest(unused + std::min(count, 1), unused + count);
   parser.DeleteRemainingArguments(count, &unused);
-  if (!unknown.empty())
+  bool positionalTaken = false;
+  for (const std::string& argument : rest)
   {
-    throw std::runtime_error("unknown option " + unknown + " (see --help)");
+    if (this->Positional && !positionalTaken && !argument.empty() && argument[0] != '-')
+    {
+      *this->Positional = argument;
+      positionalTaken = true;
+      continue;
+    }
+    throw std::runtime_error("unknown option " + argument + " (see --help)");
   }
 }
 }

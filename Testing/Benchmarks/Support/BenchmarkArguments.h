@@ -37,6 +37,8 @@ public:
   void AddFlag(const std::string& name, bool& flag, bool value = true);
   /// `--name TEXT`.
   void AddText(const std::string& name, std::string& text, bool* given = nullptr);
+  /// `--name TEXT`, repeatable: each occurrence appends to `texts`.
+  void AddRepeatedText(const std::string& name, std::vector<std::string>& texts);
   /// `--name N`, a whole number in [minimum, maximum].
   void AddInteger(const std::string& name, int& value, int minimum, int maximum = 1000000,
     bool* given = nullptr);
@@ -46,6 +48,9 @@ public:
   /// `--name X`, a finite number with accept(X) true.
   void AddNumber(const std::string& name, double& value,
     std::function<bool(double)> accept = nullptr, bool* given = nullptr);
+
+  /// The one argument that is not an option (a file name), if given.
+  void AddPositional(std::string& text);
 
   /// Parses the command line; throws std::runtime_error on any mistake.
   void Parse();
@@ -59,6 +64,7 @@ private:
   int ArgumentCount;
   char** Arguments;
   std::vector<std::unique_ptr<Option>> Options;
+  std::string* Positional = nullptr;
   std::string Error;
 };
 }
