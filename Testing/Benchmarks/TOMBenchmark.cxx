@@ -33,8 +33,8 @@
 #include "LoopSubdivision.h"
 #include "MachineInfo.h"
 #include "MergeTreeAttributes.h"
-#include "MeshConversion.h"
 #include "MergeTreeBuilder.h"
+#include "MeshConversion.h"
 #include "SurfaceDistance.h"
 #include "TOMBuilder.h"
 #include "TOMMesh.h"
@@ -58,8 +58,8 @@
 
 #include <vtkCellArray.h>
 #include <vtkCellArrayIterator.h>
-#include <vtkFlyingEdges3D.h>
 #include <vtkFloatArray.h>
+#include <vtkFlyingEdges3D.h>
 #include <vtkIdTypeArray.h>
 #include <vtkImageData.h>
 #include <vtkNew.h>
@@ -302,7 +302,7 @@ struct Goal
 };
 
 const Goal BuildGoal{ "TOM build rate", 1.0, true, " Mtri/s" };
-// Issue 10, item 3: the full order of the largest mesh faster than meshoptimizer's single level.
+// The full order of the largest mesh faster than meshoptimizer's single level.
 const Goal LargeBuildGoal{ "TOM build rate, igea-loop1", 2.0, true, " Mtri/s" };
 const Goal MeshoptSpeedGoal{ "TOM full order speed / meshopt_simplify to 10%, igea-loop1", 1.0,
   true, "x" };

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
- * W3 scale benchmark (issue 12, item 6): a field of at least 2,000 objects and
+ * W3 scale benchmark: a field of at least 2,000 objects and
  * 10 million triangles, replicas of the shared meshes (cow, spot, teapot,
  * homer, fandisk, bunny, igea) and of generated ones (tori, a bumpy sphere, a
  * subdivided cube), one vtkMultiresolutionPolyDataMapper in a
@@ -25,6 +25,7 @@
 #include "BenchmarkArguments.h"
 #include "BenchmarkImages.h"
 #include "BenchmarkJson.h"
+#include "BenchmarkRandom.h"
 #include "BenchmarkStatistics.h"
 #include "BenchmarkTiming.h"
 #include "CameraPose.h"
@@ -32,20 +33,27 @@
 #include "MeshConversion.h"
 #include "PlotScript.h"
 #include "PolicySelection.h"
-#include "W1CameraPath.h"
-#include "BenchmarkRandom.h"
-#include "W1Scene.h"
 #include "TestMeshIO.h"
+#include "W1CameraPath.h"
+#include "W1Scene.h"
 #include "vtkTOMBuilder.h"
 
 #include "vtkMultiresolutionPolyDataMapper.h"
 #include "vtkTOMFieldData.h"
 #include "vtkTimeCriticalRenderer.h"
 
+#include <vtkActor.h>
 #include <vtkCamera.h>
+#include <vtkCellArray.h>
 #include <vtkDataArray.h>
+#include <vtkFieldData.h>
+#include <vtkFloatArray.h>
 #include <vtkImageData.h>
+#include <vtkMultiBlockDataSet.h>
 #include <vtkNew.h>
+#include <vtkObjectFactory.h>
+#include <vtkOpenGLVertexBufferObject.h>
+#include <vtkOpenGLVertexBufferObjectGroup.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
@@ -54,14 +62,6 @@
 #include <vtkSmartPointer.h>
 #include <vtkTransform.h>
 #include <vtkUnsignedCharArray.h>
-#include <vtkActor.h>
-#include <vtkCellArray.h>
-#include <vtkFieldData.h>
-#include <vtkFloatArray.h>
-#include <vtkMultiBlockDataSet.h>
-#include <vtkObjectFactory.h>
-#include <vtkOpenGLVertexBufferObject.h>
-#include <vtkOpenGLVertexBufferObjectGroup.h>
 #include <vtkXMLPolyDataReader.h>
 #include <vtkXMLPolyDataWriter.h>
 
