@@ -39,6 +39,7 @@
 #include "MergeTreeAttributes.h"
 #include "MeshConversion.h"
 #include "PlotScript.h"
+#include "PolicyGoal.h"
 #include "PolicySelection.h"
 #include "TestMeshIO.h"
 #include "W1CameraPath.h"
@@ -1297,12 +1298,7 @@ MixedResult RunMixed(const Settings& settings, const LargeObject& object)
 //------------------------------------------------------------------------------
 // Goals, table, JSON
 
-struct Goal
-{
-  std::string Name, Required, Measured;
-  bool Met = false;
-  bool Evaluated = true; ///< false when the run lacks what the goal compares with
-};
+using Goal = PolicyGoal;
 
 const PolicyRun* FindRun(const std::vector<PolicyRun>& runs, PolicyKind kind)
 {
@@ -1409,16 +1405,6 @@ void PrintHeader()
     "max ms", "<=110ms", "tris %", "tris", "PSNR dB", "PSNR med", "refine ms", "ref. max");
 }
 
-void PrintGoals(const std::vector<Goal>& goals)
-{
-  std::printf("\nW2 goals\n%-42s %-22s %-52s %s\n", "goal", "required", "measured", "status");
-  for (const Goal& g : goals)
-  {
-    std::printf("%-42s %-22s %-52s %s\n", g.Name.c_str(), g.Required.c_str(), g.Measured.c_str(),
-      !g.Evaluated ? "n/a" : g.Met ? "met" : "MISSED");
-  }
-}
-
 std::string StatisticsJson(const Statistics& s)
 {
   std::ostringstream out;
@@ -1516,14 +1502,7 @@ void WriteJson(const Settings& settings, const LargeObject& object, const Object
     }
     out << "}" << (p + 1 < runs.size() ? "," : "") << "\n";
   }
-  out << "  ],\n  \"goals\": [";
-  for (size_t g = 0; g < goals.size(); ++g)
-  {
-    out << (g ? ", " : "") << "{\"goal\": " << Quoted(goals[g].Name) << ", \"required\": "
-        << Quoted(goals[g].Required) << ", \"measured\": " << Quoted(goals[g].Measured)
-        << ", \"met\": " << (!goals[g].Evaluated ? "null" : goals[g].Met ? "true" : "false") << "}";
-  }
-  out << "]";
+  out << "  ],\n  \"goals\": " << GoalsJson(goals);
   if (mixed)
   {
     out << ",\n  \"mixed\": {\"cow_mesh\": " << Quoted(mixed->CowSource) << ", \"cow_substitute\": "
@@ -1646,7 +1625,7 @@ int main(int argc, char* argv[])
     std::printf("(PSNR against the full-resolution frame of the same camera and light, identical "
                 "images counted as %.0f dB; refinement times in ms)\n",
       PSNRCap);
-    PrintGoals(goals);
+    PrintGoals("W2 goals", goals, 42, 52);
     if (mixed)
     {
       std::printf("\nmixed scene: %d cows (%lld triangles%s) + the object (%lld triangles) in "

@@ -32,6 +32,7 @@
 #include "MachineInfo.h"
 #include "MeshConversion.h"
 #include "PlotScript.h"
+#include "PolicyGoal.h"
 #include "PolicySelection.h"
 #include "TestMeshIO.h"
 #include "W1CameraPath.h"
@@ -996,12 +997,7 @@ void Walkthrough::MeasureNoiseFloor()
 //------------------------------------------------------------------------------
 // Output
 
-struct Goal
-{
-  std::string Name, Required, Measured;
-  bool Met = false;
-  bool Evaluated = true; ///< false when the run lacks what the goal compares with
-};
+using Goal = PolicyGoal;
 
 std::vector<Goal> EvaluateGoals(
   const std::vector<PolicyRun>& runs, double target, const Walkthrough::NoiseFloor& noise)
@@ -1138,13 +1134,7 @@ void PrintTable(const std::vector<PolicyRun>& runs, const std::vector<Goal>& goa
   }
   if (!goals.empty())
   {
-    std::printf("\nTimeCritical goals\n%-40s %-22s %-32s %s\n", "goal", "required", "measured",
-      "status");
-    for (const Goal& g : goals)
-    {
-      std::printf("%-40s %-22s %-32s %s\n", g.Name.c_str(), g.Required.c_str(),
-        g.Measured.c_str(), !g.Evaluated ? "n/a" : g.Met ? "met" : "MISSED");
-    }
+    PrintGoals("TimeCritical goals", goals, 40, 32);
   }
 }
 
@@ -1285,15 +1275,7 @@ void WriteJson(const Settings& settings, const ObjectMesh& object, const Scene& 
     }
     out << "\n     }}" << (p + 1 < runs.size() ? "," : "") << "\n";
   }
-  out << "  ],\n  \"goals\": [";
-  for (size_t g = 0; g < goals.size(); ++g)
-  {
-    out << (g ? ", " : "") << "{\"goal\": " << Quoted(goals[g].Name) << ", \"required\": "
-        << Quoted(goals[g].Required) << ", \"measured\": " << Quoted(goals[g].Measured)
-        << ", \"met\": " << (!goals[g].Evaluated ? "null" : goals[g].Met ? "true" : "false")
-        << "}";
-  }
-  out << "]\n}\n";
+  out << "  ],\n  \"goals\": " << GoalsJson(goals) << "\n}\n";
   if (!out)
   {
     throw std::runtime_error("error writing " + settings.Json);
