@@ -4,7 +4,10 @@
 
 W1 is the walkthrough of Gobbetti & Bouvier's section 7.2.2 that the C++
 benchmark Testing/Benchmarks/WalkthroughBenchmark.cxx flies (scene and path in
-Testing/Benchmarks/BenchmarkSupport.h). This script reproduces both exactly:
+Testing/Benchmarks/Support/W1Scene.cxx and W1CameraPath.cxx). Both read the
+layout's numbers from one specification, Testing/Benchmarks/Support/W1Scene.json,
+and the tests W1SceneMatchesCow and W1SceneMatchesSubstitute
+(Testing/Benchmarks/TestW1SceneMatch.py) check that they build the same scene:
 
 * the object: cow.obj (read, bit-equal points welded, unused points dropped),
   or the benchmark's cow-sized bumpy ellipsoid when the file is missing,
@@ -49,12 +52,24 @@ import time
 
 import numpy as np
 
-DEFAULT_SEED = 20001
-DEFAULT_OBJECTS = 529
-DEFAULT_FRAMES = 240
-WINDOW_SIZE = 512
-VIEW_ANGLE = 40.0
-BACKGROUND = (0.32, 0.36, 0.45)
+SPECIFICATION_FILE = os.path.normpath(os.path.join(
+    os.path.dirname(os.path.abspath(__file__)), "..", "Testing", "Benchmarks", "Support",
+    "W1Scene.json"))
+
+
+def load_specification(path=SPECIFICATION_FILE):
+    """W1's layout numbers, shared with the C++ benchmarks."""
+    with open(path) as stream:
+        return json.load(stream)
+
+
+SPEC = load_specification()
+DEFAULT_SEED = SPEC["defaults"]["seed"]
+DEFAULT_OBJECTS = SPEC["defaults"]["objects"]
+DEFAULT_FRAMES = SPEC["defaults"]["frames"]
+WINDOW_SIZE = SPEC["view"]["window_size"]
+VIEW_ANGLE = SPEC["view"]["view_angle"]
+BACKGROUND = tuple(SPEC["view"]["background"])
 # Bumped whenever what this script writes changes, so that old scenes are rebuilt.
 FORMAT_VERSION = 1
 
@@ -99,9 +114,10 @@ def round_half_away(x):
 
 def random_color(random):
     """Random hue, moderate saturation, bright value (the benchmark's RandomColor)."""
-    h = random.uniform(0.0, 6.0)
-    s = random.uniform(0.3, 0.65)
-    v = random.uniform(0.7, 0.95)
+    colors = SPEC["colors"]
+    h = random.uniform(*colors["hue"])
+    s = random.uniform(*colors["saturation"])
+    v = random.uniform(*colors["value"])
     sector = int(h) % 6
     f = h - math.floor(h)
     p, q, t = v * (1 - s), v * (1 - s * f), v * (1 - s * (1 - f))
@@ -167,7 +183,9 @@ def weld_and_clean(points, triangles):
 def substitute_cow():
     """The benchmark's stand-in when cow.obj is missing: a bumpy ellipsoid of
     2 x 43 x 68 = 5,848 triangles with the cow's extents."""
-    latitudes, longitudes = 44, 68
+    spec = SPEC["substitute_object"]
+    latitudes, longitudes = spec["latitudes"], spec["longitudes"]
+    amplitude, (fx, fy, fz), (sx, sy, sz) = spec["bump_amplitude"], spec["bump_frequencies"], spec["scale"]
     pts = [(0.0, 0.0, 1.0)]
     for k in range(1, latitudes):
         theta = math.pi * k / latitudes
@@ -189,8 +207,8 @@ def substitute_cow():
     tris += [(ring(latitudes - 1, j), south, ring(latitudes - 1, j + 1)) for j in range(longitudes)]
     out = []
     for x, y, z in pts:
-        bump = 1.0 + 0.08 * math.sin(7.0 * x) * math.sin(5.0 * y) * math.cos(6.0 * z)
-        out.append((x * 5.2 * bump, y * 3.2 * bump, z * 1.7 * bump))
+        bump = 1.0 + amplitude * math.sin(fx * x) * math.sin(fy * y) * math.cos(fz * z)
+        out.append((x * (sx * bump), y * (sy * bump), z * (sz * bump)))
     return np.array(out, dtype=np.float64), np.array(tris, dtype=np.int64)
 
 
@@ -258,8 +276,9 @@ def place_objects(objects, seed, bounds, footprint_points):
     radius = float(np.max(np.hypot(footprint_points[:, 0] - cx, footprint_points[:, 2] - cz)))
     height = b[3] - b[2]
     grid = int(math.ceil(math.sqrt(objects)))
-    spacing = 2.0 * radius + 3.0
-    jitter = 0.45 * (spacing - 2.0 * radius)
+    placement = SPEC["placement"]
+    spacing = 2.0 * radius + placement["gap"]
+    jitter = placement["jitter_fraction_of_gap"] * (spacing - 2.0 * radius)
     extent = grid * spacing
 
     random = Random(seed)
@@ -278,7 +297,8 @@ def place_objects(objects, seed, bounds, footprint_points):
             raise RuntimeError("objects %d and %d overlap" % (m, m + 1 + int(np.argmax(d < 2 * radius))))
     focus = 0
     if placed:
-        d = np.hypot(xz[:, 0] - 0.30 * extent, xz[:, 1] - 0.25 * extent)
+        near = placement["focus_near"]
+        d = np.hypot(xz[:, 0] - near[0] * extent, xz[:, 1] - near[1] * extent)
         focus = int(np.argmin(d))  # the first of equals, as the benchmark's strict '<'
     return {"grid": grid, "spacing": spacing, "jitter": jitter, "extent": extent,
             "footprint_radius": radius, "height": height, "focus_object": focus,
@@ -302,18 +322,22 @@ def _smoothstep(t):
 def camera_path(layout, frames):
     """The W1 path as a dict: per frame position, focal point, view up, view
     angle; key frames A, B, turn, C."""
+    spec = SPEC["camera_path"]
     L, r = layout["extent"], layout["footprint_radius"]
     center = [0.5 * L, 0.0, 0.5 * L]
     focus = layout["objects"][layout["focus_object"]]
-    target = [focus["x"], 0.5 * layout["height"], focus["z"]]
-    a = [center[0] + 1.115 * L, center[1] + 0.932 * L, center[2] - 1.121 * L]
+    target = [focus["x"], spec["target_height"] * layout["height"], focus["z"]]
+    a = [center[k] + spec["a_offset"][k] * L for k in range(3)]
     toward_a = _normalized([a[0] - target[0], 0.0, a[2] - target[2]])
-    b = [target[k] + toward_a[k] * (4.4 * r) + (2.5 * r if k == 1 else 0.0) for k in range(3)]
-    turn_direction = _normalized([1.0, -0.12, 1.0])
-    turn_focus = [b[k] + turn_direction[k] * (0.31 * L) for k in range(3)]
-    back = _normalized([1.0, 0.0, 1.0])
-    c = [b[0] - back[0] * 0.932 * L, 0.528 * L, b[2] - back[2] * 0.932 * L]
-    key_b = round_half_away(0.45 * (frames - 1))
+    b_up = [0.0, spec["b_height"] * r, 0.0]
+    b = [target[k] + toward_a[k] * (spec["b_distance"] * r) + b_up[k] for k in range(3)]
+    turn_direction = _normalized(spec["turn_direction"])
+    turn_focus = [b[k] + turn_direction[k] * (spec["turn_focus_distance"] * L) for k in range(3)]
+    back = _normalized(spec["c_direction"])
+    c_up = [0.0, spec["c_height"] * L, 0.0]
+    c = [([b[0], 0.0, b[2]][k] - back[k] * (spec["c_distance"] * L)) + c_up[k] for k in range(3)]
+    key_b = round_half_away(spec["key_b"] * (frames - 1))
+    ease = spec["focus_ease_scale"]
     last = frames - 1
 
     positions, focal_points = [], []
@@ -323,7 +347,7 @@ def camera_path(layout, frames):
             # from the herd's centre to the focus object.
             s = frame / key_b if key_b > 0 else 1.0
             position = _lerp(a, b, 1.0 - (1.0 - s) * (1.0 - s))
-            focal = _lerp(center, target, _smoothstep(1.3 * s))
+            focal = _lerp(center, target, _smoothstep(ease * s))
         else:
             # After the one-frame turn: backing away (ease-in), the view
             # drifting back to the herd's centre.

@@ -27,21 +27,44 @@
  *   InteractiveBenchmark [--quick] [--objects N] [--rate FPS] [--drags N]
  *                        [--moves N] [--output DIR] [--json FILE] [--data DIR]
  */
-#include "BenchmarkSupport.h"
+#include "BenchmarkArguments.h"
+#include "BenchmarkImages.h"
+#include "BenchmarkJson.h"
+#include "BenchmarkStatistics.h"
+#include "BenchmarkTiming.h"
+#include "CameraPose.h"
+#include "MachineInfo.h"
+#include "MeshConversion.h"
+#include "PlotScript.h"
+#include "PolicySelection.h"
+#include "TestMeshIO.h"
+#include "W1CameraPath.h"
+#include "W1Scene.h"
+#include "W1SceneSpecification.h"
 #include "vtkMultiresolutionPolyDataMapper.h"
+#include "vtkTOMBuilder.h"
+#include "vtkTOMFieldData.h"
 #include "vtkTimeCriticalRenderer.h"
 
 #include <vtkActor.h>
 #include <vtkCallbackCommand.h>
 #include <vtkCamera.h>
+#include <vtkCellArray.h>
 #include <vtkCommand.h>
+#include <vtkDataArray.h>
+#include <vtkImageData.h>
 #include <vtkInteractorStyleTrackballCamera.h>
 #include <vtkMultiBlockDataSet.h>
 #include <vtkNew.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
 #include <vtkRenderWindow.h>
 #include <vtkRenderWindowInteractor.h>
 #include <vtkRenderer.h>
 #include <vtkSmartPointer.h>
+#include <vtkTransform.h>
+#include <vtkUnsignedCharArray.h>
 
 #include <algorithm>
 #include <cmath>
@@ -67,7 +90,7 @@ struct Settings
   int Drags = 6;
   int Moves = 40;
   bool RestCheck = true;
-  unsigned Seed = 20001;
+  unsigned Seed = W1SceneSpecification::Get().DefaultSeed;
 
   std::string Output = "interactive-output";
   std::string Json;
@@ -93,86 +116,25 @@ void PrintUsage()
 Settings ParseArguments(int argc, char* argv[])
 {
   Settings settings;
-  bool objectsSet = false, dragsSet = false, movesSet = false;
-  for (int i = 1; i < argc; ++i)
+  bool help = false, objectsSet = false, dragsSet = false, movesSet = false;
+  BenchmarkArguments arguments(argc, argv);
+  arguments.AddFlag("--help", help);
+  arguments.AddFlag("-h", help);
+  arguments.AddFlag("--quick", settings.Quick);
+  arguments.AddFlag("--no-rest-check", settings.RestCheck, false);
+  arguments.AddInteger("--objects", settings.Objects, 1, 1000000, &objectsSet);
+  arguments.AddInteger("--drags", settings.Drags, 1, 1000000, &dragsSet);
+  arguments.AddInteger("--moves", settings.Moves, 1, 1000000, &movesSet);
+  arguments.AddUnsigned("--seed", settings.Seed);
+  arguments.AddNumber("--rate", settings.Rate, [](double x) { return x > 0.01; });
+  arguments.AddText("--output", settings.Output);
+  arguments.AddText("--json", settings.Json);
+  arguments.AddText("--data", settings.DataDirectory);
+  arguments.Parse();
+  if (help)
   {
-    const std::string arg = argv[i];
-    const auto value = [&]() -> std::string {
-      if (i + 1 >= argc)
-      {
-        throw std::runtime_error("missing value after " + arg);
-      }
-      return argv[++i];
-    };
-    const auto integer = [&](int minimum) {
-      const std::string text = value();
-      char* end = nullptr;
-      const long parsed = std::strtol(text.c_str(), &end, 10);
-      if (end == text.c_str() || *end != '\0' || parsed < minimum || parsed > 1000000)
-      {
-        throw std::runtime_error("bad value for " + arg + ": " + text);
-      }
-      return static_cast<int>(parsed);
-    };
-    if (arg == "--help" || arg == "-h")
-    {
-      PrintUsage();
-      std::exit(0);
-    }
-    else if (arg == "--quick")
-    {
-      settings.Quick = true;
-    }
-    else if (arg == "--no-rest-check")
-    {
-      settings.RestCheck = false;
-    }
-    else if (arg == "--objects")
-    {
-      settings.Objects = integer(1);
-      objectsSet = true;
-    }
-    else if (arg == "--drags")
-    {
-      settings.Drags = integer(1);
-      dragsSet = true;
-    }
-    else if (arg == "--moves")
-    {
-      settings.Moves = integer(1);
-      movesSet = true;
-    }
-    else if (arg == "--seed")
-    {
-      settings.Seed = static_cast<unsigned>(integer(0));
-    }
-    else if (arg == "--rate")
-    {
-      const std::string text = value();
-      char* end = nullptr;
-      settings.Rate = std::strtod(text.c_str(), &end);
-      if (end == text.c_str() || *end != '\0' || !(settings.Rate > 0.01) ||
-        !std::isfinite(settings.Rate))
-      {
-        throw std::runtime_error("bad value for --rate: " + text);
-      }
-    }
-    else if (arg == "--output")
-    {
-      settings.Output = value();
-    }
-    else if (arg == "--json")
-    {
-      settings.Json = value();
-    }
-    else if (arg == "--data")
-    {
-      settings.DataDirectory = value();
-    }
-    else
-    {
-      throw std::runtime_error("unknown option " + arg + " (see --help)");
-    }
+    PrintUsage();
+    std::exit(0);
   }
   if (settings.Quick)
   {
@@ -513,7 +475,7 @@ Summary Summarize(const Session& session)
   if (!times.empty())
   {
     s.Mean = Mean(times);
-    s.Median = MedianOf(times);
+    s.Median = Median(times);
     s.Max = *std::max_element(times.begin(), times.end());
     double variance = 0.0;
     for (double t : times)
@@ -622,12 +584,7 @@ int main(int argc, char* argv[])
       return 2;
     }
     std::filesystem::create_directories(settings.Output);
-    double load[2] = { NaN, NaN };
-    double sample[3];
-    if (getloadavg(sample, 3) > 0)
-    {
-      load[0] = sample[0];
-    }
+    double load[2] = { LoadAverages()[0], NaN };
     Session session(settings);
     std::cerr << "building the scene...\n";
     session.Setup();
@@ -644,10 +601,7 @@ int main(int argc, char* argv[])
       std::cerr << "  drag " << d + 1 << "/" << settings.Drags << " done\n";
     }
     session.CheckRest();
-    if (getloadavg(sample, 3) > 0)
-    {
-      load[1] = sample[0];
-    }
+    load[1] = LoadAverages()[0];
     const Summary s = Summarize(session);
     const double target = 1.0 / settings.Rate;
     std::printf("InteractiveBenchmark: %d objects, %lld triangles%s, interactor rate %.1f/s "

@@ -12,6 +12,9 @@
 //
 //   OptimizerBenchmark [--json path] [--quick] [--repeats N] [--seed S]
 //                      [--sizes n,n,...] [--alphas a,a,...]
+#include "BenchmarkArguments.h"
+#include "BenchmarkStatistics.h"
+#include "BenchmarkTiming.h"
 #include "BudgetTestUtilities.h"
 
 #include "ActiveSetOptimizer.h"
@@ -38,12 +41,9 @@ using timecritical::ResolutionProblem;
 using timecritical_test::MakeRandomProblem;
 using timecritical_test::NextFrame;
 using timecritical_test::RandomProblem;
-using Clock = std::chrono::steady_clock;
-
-double Seconds(Clock::time_point a, Clock::time_point b)
-{
-  return std::chrono::duration<double>(b - a).count();
-}
+using timecritical::benchmark::Clock;
+using timecritical::benchmark::Median;
+using timecritical::benchmark::Seconds;
 
 /// CPU time of the calling thread (s); wall time where there is no such clock.
 double ThreadSeconds()
@@ -68,16 +68,6 @@ std::vector<double> ParseList(const std::string& text)
     start = end + 1;
   }
   return values;
-}
-
-double Median(std::vector<double> v)
-{
-  if (v.empty())
-  {
-    return 0.0;
-  }
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
 }
 
 double Gap(double f, double reference)
@@ -211,40 +201,34 @@ int main(int argc, char** argv)
   int repeats = 21;
   unsigned seed = 1;
   std::vector<double> onlySizes, onlyAlphas;
-  for (int i = 1; i < argc; ++i)
+  bool help = false;
+  std::string sizesText, alphasText;
+  timecritical::benchmark::BenchmarkArguments arguments(argc, argv);
+  arguments.AddFlag("--help", help);
+  arguments.AddText("--json", json);
+  arguments.AddFlag("--quick", quick);
+  arguments.AddInteger("--repeats", repeats, 1);
+  arguments.AddUnsigned("--seed", seed, 0, 4294967295u);
+  arguments.AddText("--sizes", sizesText);
+  arguments.AddText("--alphas", alphasText);
+  const char* usage = "usage: OptimizerBenchmark [--json path] [--quick] [--repeats N] [--seed S]\n"
+                      "                          [--sizes n,n,...] [--alphas a,a,...]\n";
+  try
   {
-    const std::string a = argv[i];
-    if (a == "--json" && i + 1 < argc)
-    {
-      json = argv[++i];
-    }
-    else if (a == "--quick")
-    {
-      quick = true;
-    }
-    else if (a == "--repeats" && i + 1 < argc)
-    {
-      repeats = std::max(1, std::atoi(argv[++i]));
-    }
-    else if (a == "--seed" && i + 1 < argc)
-    {
-      seed = static_cast<unsigned>(std::atoi(argv[++i]));
-    }
-    else if (a == "--sizes" && i + 1 < argc)
-    {
-      onlySizes = ParseList(argv[++i]);
-    }
-    else if (a == "--alphas" && i + 1 < argc)
-    {
-      onlyAlphas = ParseList(argv[++i]);
-    }
-    else
-    {
-      std::printf("usage: OptimizerBenchmark [--json path] [--quick] [--repeats N] [--seed S]\n"
-                  "                          [--sizes n,n,...] [--alphas a,a,...]\n");
-      return a == "--help" ? 0 : 2;
-    }
+    arguments.Parse();
   }
+  catch (const std::runtime_error& error)
+  {
+    std::printf("%s\n%s", error.what(), usage);
+    return 2;
+  }
+  if (help)
+  {
+    std::printf("%s", usage);
+    return 0;
+  }
+  onlySizes = ParseList(sizesText);
+  onlyAlphas = ParseList(alphasText);
   std::vector<std::size_t> sizes = { 100, 529, 1000, 10000, 100000 };
   if (quick)
   {

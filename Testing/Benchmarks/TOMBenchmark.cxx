@@ -26,8 +26,15 @@
  *   TOMBenchmark [--quick] [--quality-only] [--mesh NAME]... [--json FILE] [--data DIR]
  *                [--hausdorff-all]
  */
+#include "BenchmarkArguments.h"
+#include "BenchmarkJson.h"
+#include "BenchmarkStatistics.h"
+#include "BenchmarkTiming.h"
+#include "LoopSubdivision.h"
+#include "MachineInfo.h"
 #include "MergeTreeAttributes.h"
 #include "MergeTreeBuilder.h"
+#include "MeshConversion.h"
 #include "SurfaceDistance.h"
 #include "TOMBuilder.h"
 #include "TOMMesh.h"
@@ -51,11 +58,10 @@
 
 #include <vtkCellArray.h>
 #include <vtkCellArrayIterator.h>
-#include <vtkFlyingEdges3D.h>
 #include <vtkFloatArray.h>
+#include <vtkFlyingEdges3D.h>
 #include <vtkIdTypeArray.h>
 #include <vtkImageData.h>
-#include <vtkLoopSubdivisionFilter.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
@@ -93,6 +99,7 @@ using timecritical::TOMBuildResult;
 using timecritical::TOMMesh;
 using timecritical::TOMTraversal;
 using timecritical::testing::TriangleMesh;
+using namespace timecritical::benchmark;
 
 //------------------------------------------------------------------------------
 // Settings
@@ -128,28 +135,7 @@ const std::vector<double> MergeTreeCostRatios = { 0.0, 1.5, 4.0 };
 constexpr double ComparisonFraction = 0.1; ///< quadric and meshopt keep 10% of the triangles
 
 //------------------------------------------------------------------------------
-// Timing: every figure goes through Seconds().
-
-using Clock = std::chrono::steady_clock;
-
-template <class Function>
-double Seconds(Function&& function)
-{
-  const Clock::time_point start = Clock::now();
-  function();
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
-double Median(std::vector<double> values)
-{
-  if (values.empty())
-  {
-    return std::numeric_limits<double>::quiet_NaN();
-  }
-  std::sort(values.begin(), values.end());
-  const size_t middle = values.size() / 2;
-  return values.size() % 2 ? values[middle] : 0.5 * (values[middle - 1] + values[middle]);
-}
+// Timing: every figure goes through SecondsOf().
 
 /// Wall-clock seconds of each run and their median.
 struct Timing
@@ -165,7 +151,7 @@ Timing TimeRuns(const Settings& settings, Function&& function)
   Timing timing;
   for (int run = 0; run < settings.BuildRuns; ++run)
   {
-    timing.Runs.push_back(Seconds(function));
+    timing.Runs.push_back(SecondsOf(function));
     if (timing.Runs.front() > settings.SlowRunSeconds)
     {
       break;
@@ -191,8 +177,8 @@ double SecondsPerCall(const Settings& settings, Function&& function)
       function();
     }
   };
-  for (double elapsed = Seconds(repeated); elapsed < settings.MinMeasureSeconds;
-       elapsed = Seconds(repeated))
+  for (double elapsed = SecondsOf(repeated); elapsed < settings.MinMeasureSeconds;
+       elapsed = SecondsOf(repeated))
   {
     const double scale = 1.25 * settings.MinMeasureSeconds / std::max(elapsed, 1e-7);
     repeats = static_cast<uint64_t>(
@@ -201,7 +187,7 @@ double SecondsPerCall(const Settings& settings, Function&& function)
   std::vector<double> perCall;
   for (int i = 0; i < settings.TraversalMeasurements; ++i)
   {
-    perCall.push_back(Seconds(repeated) / static_cast<double>(repeats));
+    perCall.push_back(SecondsOf(repeated) / static_cast<double>(repeats));
   }
   return Median(perCall);
 }
@@ -283,147 +269,14 @@ private:
   std::vector<std::vector<std::string>> Rows;
 };
 
-//------------------------------------------------------------------------------
-// JSON: a small ordered tree, enough for the report.
-
-class Json
+JsonValue ToJson(const Timing& timing)
 {
-public:
-  Json() = default;
-  Json(bool value)
-    : Type(Kind::Bool)
-    , Flag(value)
-  {
-  }
-  template <class T, std::enable_if_t<std::is_arithmetic<T>::value, int> = 0>
-  Json(T value)
-    : Type(Kind::Number)
-    , Number(static_cast<double>(value))
-  {
-  }
-  Json(std::string value)
-    : Type(Kind::String)
-    , Text(std::move(value))
-  {
-  }
-  Json(const char* value)
-    : Json(std::string(value))
-  {
-  }
-
-  static Json Object() { return Json(Kind::Object); }
-  static Json Array() { return Json(Kind::Array); }
-
-  Json& Set(const std::string& key, Json value)
-  {
-    this->Keys.push_back(key);
-    this->Items.push_back(std::move(value));
-    return *this;
-  }
-
-  Json& Push(Json value)
-  {
-    this->Items.push_back(std::move(value));
-    return *this;
-  }
-
-  void Write(std::ostream& os, int indent = 0) const
-  {
-    switch (this->Type)
-    {
-      case Kind::Null:
-        os << "null";
-        break;
-      case Kind::Bool:
-        os << (this->Flag ? "true" : "false");
-        break;
-      case Kind::Number:
-        os << (std::isfinite(this->Number) ? Format("%.12g", this->Number) : "null");
-        break;
-      case Kind::String:
-        WriteString(os, this->Text);
-        break;
-      case Kind::Array:
-      case Kind::Object:
-        this->WriteContainer(os, indent);
-        break;
-    }
-  }
-
-private:
-  enum class Kind
-  {
-    Null,
-    Bool,
-    Number,
-    String,
-    Array,
-    Object
-  };
-
-  explicit Json(Kind kind)
-    : Type(kind)
-  {
-  }
-
-  static void WriteString(std::ostream& os, const std::string& text)
-  {
-    os << '"';
-    for (const char ch : text)
-    {
-      if (ch == '"' || ch == '\\')
-      {
-        os << '\\' << ch;
-      }
-      else if (static_cast<unsigned char>(ch) < 0x20)
-      {
-        os << Format("\\u%04x", static_cast<unsigned>(ch));
-      }
-      else
-      {
-        os << ch;
-      }
-    }
-    os << '"';
-  }
-
-  void WriteContainer(std::ostream& os, int indent) const
-  {
-    const bool object = this->Type == Kind::Object;
-    os << (object ? '{' : '[');
-    for (size_t i = 0; i < this->Items.size(); ++i)
-    {
-      os << (i ? ",\n" : "\n") << std::string(indent + 2, ' ');
-      if (object)
-      {
-        WriteString(os, this->Keys[i]);
-        os << ": ";
-      }
-      this->Items[i].Write(os, indent + 2);
-    }
-    if (!this->Items.empty())
-    {
-      os << "\n" << std::string(indent, ' ');
-    }
-    os << (object ? '}' : ']');
-  }
-
-  Kind Type = Kind::Null;
-  bool Flag = false;
-  double Number = 0.0;
-  std::string Text;
-  std::vector<std::string> Keys;
-  std::vector<Json> Items;
-};
-
-Json ToJson(const Timing& timing)
-{
-  Json runs = Json::Array();
+  JsonValue runs = JsonValue::Array();
   for (double seconds : timing.Runs)
   {
     runs.Push(seconds);
   }
-  return Json::Object().Set("runs_s", std::move(runs)).Set("median_s", timing.Median);
+  return JsonValue::Object().Set("runs_s", std::move(runs)).Set("median_s", timing.Median);
 }
 
 //------------------------------------------------------------------------------
@@ -449,7 +302,7 @@ struct Goal
 };
 
 const Goal BuildGoal{ "TOM build rate", 1.0, true, " Mtri/s" };
-// Issue 10, item 3: the full order of the largest mesh faster than meshoptimizer's single level.
+// The full order of the largest mesh faster than meshoptimizer's single level.
 const Goal LargeBuildGoal{ "TOM build rate, igea-loop1", 2.0, true, " Mtri/s" };
 const Goal MeshoptSpeedGoal{ "TOM full order speed / meshopt_simplify to 10%, igea-loop1", 1.0,
   true, "x" };
@@ -504,12 +357,12 @@ public:
     table.Print(os, "Summary of goals");
   }
 
-  Json ToJson() const
+  JsonValue ToJson() const
   {
-    Json checks = Json::Array();
+    JsonValue checks = JsonValue::Array();
     for (const Entry& entry : this->Entries)
     {
-      checks.Push(Json::Object()
+      checks.Push(JsonValue::Object()
                     .Set("goal", entry.Which->Name)
                     .Set("target", entry.Which->Text())
                     .Set("where", entry.Where)
@@ -547,59 +400,6 @@ void Require(bool condition, const std::string& what)
 
 //------------------------------------------------------------------------------
 // Meshes: TriangleMesh <-> vtkPolyData
-
-vtkSmartPointer<vtkPolyData> ToPolyData(const TriangleMesh& mesh)
-{
-  vtkNew<vtkPoints> points;
-  points->SetDataTypeToDouble();
-  points->SetNumberOfPoints(static_cast<vtkIdType>(mesh.NumberOfPoints()));
-  for (size_t i = 0; i < mesh.NumberOfPoints(); ++i)
-  {
-    points->SetPoint(static_cast<vtkIdType>(i), &mesh.Points[3 * i]);
-  }
-  vtkNew<vtkIdTypeArray> offsets;
-  vtkNew<vtkIdTypeArray> connectivity;
-  offsets->SetNumberOfValues(static_cast<vtkIdType>(mesh.NumberOfTriangles() + 1));
-  connectivity->SetNumberOfValues(static_cast<vtkIdType>(mesh.Triangles.size()));
-  for (size_t t = 0; t <= mesh.NumberOfTriangles(); ++t)
-  {
-    offsets->SetValue(static_cast<vtkIdType>(t), static_cast<vtkIdType>(3 * t));
-  }
-  for (size_t i = 0; i < mesh.Triangles.size(); ++i)
-  {
-    connectivity->SetValue(static_cast<vtkIdType>(i), mesh.Triangles[i]);
-  }
-  vtkNew<vtkCellArray> polys;
-  polys->SetData(offsets, connectivity);
-  auto poly = vtkSmartPointer<vtkPolyData>::New();
-  poly->SetPoints(points);
-  poly->SetPolys(polys);
-  return poly;
-}
-
-/// Triangles only (the polys of a triangle mesh); anything else throws.
-TriangleMesh FromPolyData(vtkPolyData* poly)
-{
-  Require(poly->GetNumberOfStrips() == 0 && poly->GetNumberOfLines() == 0,
-    "expected a polydata of triangles only");
-  TriangleMesh mesh;
-  mesh.Points.resize(3 * static_cast<size_t>(poly->GetNumberOfPoints()));
-  for (vtkIdType i = 0; i < poly->GetNumberOfPoints(); ++i)
-  {
-    poly->GetPoint(i, &mesh.Points[3 * static_cast<size_t>(i)]);
-  }
-  mesh.Triangles.reserve(3 * static_cast<size_t>(poly->GetNumberOfPolys()));
-  auto cells = vtk::TakeSmartPointer(poly->GetPolys()->NewIterator());
-  for (cells->GoToFirstCell(); !cells->IsDoneWithTraversal(); cells->GoToNextCell())
-  {
-    vtkIdType size = 0;
-    const vtkIdType* ids = nullptr;
-    cells->GetCurrentCell(size, ids);
-    Require(size == 3, "expected triangles, got a polygon of " + std::to_string(size));
-    mesh.Triangles.insert(mesh.Triangles.end(), ids, ids + 3);
-  }
-  return mesh;
-}
 
 double BoundingBoxDiagonal(const TriangleMesh& mesh)
 {
@@ -639,16 +439,6 @@ InputMesh MakeInput(std::string name, std::string origin, const TriangleMesh& ra
   input.Diagonal = BoundingBoxDiagonal(input.Mesh);
   Require(input.Mesh.NumberOfTriangles() > 0, input.Name + " has no triangles");
   return input;
-}
-
-/// One level of Loop subdivision (vtkLoopSubdivisionFilter).
-TriangleMesh LoopSubdivide(vtkPolyData* poly)
-{
-  vtkNew<vtkLoopSubdivisionFilter> loop;
-  loop->SetNumberOfSubdivisions(1);
-  loop->SetInputData(poly);
-  loop->Update();
-  return FromPolyData(loop->GetOutput());
 }
 
 /**
@@ -742,7 +532,7 @@ std::vector<MeshSource> SharedMeshes(const Settings& settings)
     if (file == "igea.ply")
     {
       sources.push_back({ "igea-loop1", path + " + one level of vtkLoopSubdivisionFilter",
-        [path] { return LoopSubdivide(MakeInput("igea", path, tt::LoadMesh(path)).Poly); } });
+        [path] { return FromPolyData(LoopSubdivide(MakeInput("igea", path, tt::LoadMesh(path)).Poly, 1)); } });
     }
   }
   if (!settings.Quick && !sources.empty())
@@ -1253,7 +1043,7 @@ MergeTreeFigures MeasureMergeTree(
   {
     positions.insert(positions.end(), &mesh.Points[3 * size_t(id)], &mesh.Points[3 * size_t(id)] + 3);
   }
-  figures.AttributeSeconds = Seconds([&]() {
+  figures.AttributeSeconds = SecondsOf([&]() {
     timecritical::ComputeMergeTree(tree.TOM.Mesh, positions.data(), tree.Tree.Level.data());
   });
   // The error each builder reports (quadric estimate, world units) at equal triangle counts.
@@ -1395,7 +1185,7 @@ MeshReport MeasureMesh(const Settings& settings, const MeshSource& source)
   MeshReport report;
   InputMesh input;
   report.LoadSeconds =
-    Seconds([&]() { input = MakeInput(source.Name, source.Origin, source.Read()); });
+    SecondsOf([&]() { input = MakeInput(source.Name, source.Origin, source.Read()); });
   report.Name = input.Name;
   report.Origin = input.Origin;
   report.Points = input.Mesh.NumberOfPoints();
@@ -1428,7 +1218,7 @@ MeshReport MeasureMesh(const Settings& settings, const MeshSource& source)
   if (report.Triangles <= settings.HausdorffMaxTriangles)
   {
     const double seconds =
-      Seconds([&]() { report.Quality = MeasureQuality(input, tom); });
+      SecondsOf([&]() { report.Quality = MeasureQuality(input, tom); });
     std::cout << "[" << report.Name << "] simplifiers and Hausdorff distances in "
               << Fixed(seconds, 1) << " s" << std::endl;
   }
@@ -1696,38 +1486,38 @@ void PrintQuality(const std::vector<MeshReport>& reports, GoalLog& goals)
   }
 }
 
-Json ToJson(const Hausdorff& h)
+JsonValue ToJson(const Hausdorff& h)
 {
-  return Json::Object()
+  return JsonValue::Object()
     .Set("original_to_simplified", h.OriginalToSimplified)
     .Set("simplified_to_original", h.SimplifiedToOriginal)
     .Set("symmetric", h.Symmetric());
 }
 
-Json MergeTreeJson(const MeshReport& m)
+JsonValue MergeTreeJson(const MeshReport& m)
 {
   const MergeTreeFigures& f = m.MergeTree;
-  Json errors = Json::Array();
+  JsonValue errors = JsonValue::Array();
   for (size_t i = 0; i < MergeTreeResolutions.size(); ++i)
   {
-    errors.Push(Json::Object()
+    errors.Push(JsonValue::Object()
                   .Set("resolution", MergeTreeResolutions[i])
                   .Set("merge_tree_error_over_diagonal", f.MergeTreeError[i])
                   .Set("greedy_error_over_diagonal", f.GreedyError[i])
                   .Set("ratio_to_greedy", ErrorRatio(f.MergeTreeError[i], f.GreedyError[i])));
   }
-  Json sweep = Json::Array();
+  JsonValue sweep = JsonValue::Array();
   for (const MergeTreeFigures::Setting& setting : f.Sweep)
   {
-    Json settingErrors = Json::Array();
+    JsonValue settingErrors = JsonValue::Array();
     for (size_t i = 0; i < MergeTreeResolutions.size(); ++i)
     {
-      settingErrors.Push(Json::Object()
+      settingErrors.Push(JsonValue::Object()
                            .Set("resolution", MergeTreeResolutions[i])
                            .Set("merge_tree_error_over_diagonal", setting.Error[i])
                            .Set("ratio_to_greedy", ErrorRatio(setting.Error[i], f.GreedyError[i])));
     }
-    sweep.Push(Json::Object()
+    sweep.Push(JsonValue::Object()
                  .Set("level_cost_ratio", setting.CostRatio)
                  .Set("levels", setting.Levels)
                  .Set("errors", std::move(settingErrors)));
@@ -1744,11 +1534,11 @@ Json MergeTreeJson(const MeshReport& m)
     .Set("sweep", std::move(sweep));
 }
 
-Json ToJson(const MeshReport& m)
+JsonValue ToJson(const MeshReport& m)
 {
   const double t = static_cast<double>(m.Triangles);
   const BuildFigures& b = m.Build;
-  Json build = Json::Object()
+  JsonValue build = JsonValue::Object()
                  .Set("tom", ToJson(b.Tom).Set("mtris_per_s", Mtris(t, b.Tom.Median)))
                  .Set("quadric_10pct", ToJson(b.Quadric)
                                          .Set("mtris_per_s", Mtris(t, b.Quadric.Median))
@@ -1759,17 +1549,17 @@ Json ToJson(const MeshReport& m)
                  .Set("speedup_vs_quadric", b.Quadric.Median / b.Tom.Median)
                  .Set("speedup_vs_meshopt", b.Meshopt.Median / b.Tom.Median);
   const MemoryFigures& f = m.Memory;
-  Json memory = Json::Object()
+  JsonValue memory = JsonValue::Object()
                   .Set("vertices", f.Vertices)
                   .Set("triangles", f.Triangles)
                   .Set("error_curve_samples", f.CurveSamples)
                   .Set("face_vertex_bytes", f.FaceVertexBytes())
                   .Set("tom_bytes", f.TOMBytes())
                   .Set("overhead_percent", f.OverheadPercent());
-  Json traversal = Json::Array();
+  JsonValue traversal = JsonValue::Array();
   for (const TraversalFigures& tr : m.Traversal)
   {
-    traversal.Push(Json::Object()
+    traversal.Push(JsonValue::Object()
                      .Set("resolution", tr.Resolution)
                      .Set("target_triangles", tr.TargetTriangles)
                      .Set("vertex_count", tr.VertexCount)
@@ -1780,20 +1570,20 @@ Json ToJson(const MeshReport& m)
                      .Set("extra_vertex_percent", tr.ExtraVertexPercent())
                      .Set("extra_of_visited_percent", tr.ExtraOfVisitedPercent()));
   }
-  Json quality = Json::Array();
+  JsonValue quality = JsonValue::Array();
   for (const QualityFigures& q : m.Quality)
   {
-    Json simplifiers = Json::Object();
+    JsonValue simplifiers = JsonValue::Object();
     for (size_t i = 0; i < Simplifiers.size(); ++i)
     {
       simplifiers.Set(Simplifiers[i].Key,
-        Json::Object()
+        JsonValue::Object()
           .Set("triangles", q.Triangles[i])
           .Set("vertex_subset_peer", Simplifiers[i].Peer)
           .Set("dense_relative_hausdorff", ToJson(q.Dense[i]))
           .Set("vertex_only_relative_hausdorff", ToJson(q.VertexOnly[i])));
     }
-    quality.Push(Json::Object()
+    quality.Push(JsonValue::Object()
                    .Set("resolution", q.Resolution)
                    .Set("simplifiers", std::move(simplifiers))
                    .Set("best_peer", Simplifiers[q.BestPeer(q.Dense)].Key)
@@ -1803,23 +1593,23 @@ Json ToJson(const MeshReport& m)
                    .Set("ratio_tom_over_vtk_quadric",
                      SafeRatio(q.Dense[0].Symmetric(), q.Dense.back().Symmetric())));
   }
-  return Json::Object()
+  return JsonValue::Object()
     .Set("name", m.Name)
     .Set("origin", m.Origin)
     .Set("points", m.Points)
     .Set("triangles", m.Triangles)
     .Set("bounding_box_diagonal", m.Diagonal)
     .Set("load_s", m.LoadSeconds)
-    .Set("build", m.QualityOnly ? Json() : std::move(build))
-    .Set("memory", m.QualityOnly ? Json() : std::move(memory))
-    .Set("traversal", m.QualityOnly ? Json() : std::move(traversal))
+    .Set("build", m.QualityOnly ? JsonValue() : std::move(build))
+    .Set("memory", m.QualityOnly ? JsonValue() : std::move(memory))
+    .Set("traversal", m.QualityOnly ? JsonValue() : std::move(traversal))
     .Set("hausdorff", std::move(quality))
-    .Set("hausdorff_skipped", m.QualitySkipped.empty() ? Json() : Json(m.QualitySkipped))
-    .Set("merge_tree", m.QualityOnly ? Json() : MergeTreeJson(m));
+    .Set("hausdorff_skipped", m.QualitySkipped.empty() ? JsonValue() : JsonValue(m.QualitySkipped))
+    .Set("merge_tree", m.QualityOnly ? JsonValue() : MergeTreeJson(m));
 }
 
 /// Medians over the meshes of the headline figures.
-Json Medians(const std::vector<MeshReport>& reports)
+JsonValue Medians(const std::vector<MeshReport>& reports)
 {
   std::vector<double> build, quadric, meshopt, memory, rate, chain, ratio, vertexRatio;
   for (const MeshReport& m : reports)
@@ -1845,65 +1635,31 @@ Json Medians(const std::vector<MeshReport>& reports)
     }
   }
   const auto maximum = [](const std::vector<double>& v) {
-    return v.empty() ? Json() : Json(*std::max_element(v.begin(), v.end()));
+    return v.empty() ? JsonValue() : JsonValue(*std::max_element(v.begin(), v.end()));
   };
-  return Json::Object()
+  return JsonValue::Object()
     .Set("tom_build_mtris_per_s", Median(build))
     .Set("quadric_10pct_mtris_per_s", Median(quadric))
     .Set("meshopt_10pct_mtris_per_s", Median(meshopt))
     .Set("memory_overhead_percent", Median(memory))
     .Set("traversal_mtris_per_s", Median(rate))
     .Set("extra_vertex_percent", Median(chain))
-    .Set("quality_ratio_geometric_mean", ratio.empty() ? Json() : Json(GeometricMean(ratio)))
+    .Set("quality_ratio_geometric_mean", ratio.empty() ? JsonValue() : JsonValue(GeometricMean(ratio)))
     .Set("quality_ratio_max", maximum(ratio))
     .Set("quality_ratio_vertex_only_geometric_mean",
-      vertexRatio.empty() ? Json() : Json(GeometricMean(vertexRatio)))
+      vertexRatio.empty() ? JsonValue() : JsonValue(GeometricMean(vertexRatio)))
     .Set("quality_ratio_vertex_only_max", maximum(vertexRatio));
 }
 
 //------------------------------------------------------------------------------
 // Machine and run information
 
-std::string CpuModel()
+JsonValue MachineInfo()
 {
-  std::ifstream cpuinfo("/proc/cpuinfo");
-  std::string line;
-  while (std::getline(cpuinfo, line))
-  {
-    if (line.rfind("model name", 0) == 0)
-    {
-      const size_t value = line.find_first_not_of(" \t", line.find(':') + 1);
-      return value == std::string::npos ? line : line.substr(value);
-    }
-  }
-  return "unknown";
-}
-
-/// The 1, 5 and 15 minute load averages: timings are only as good as a quiet machine.
-std::string LoadAverage()
-{
-  std::ifstream loadavg("/proc/loadavg");
-  double one = 0.0, five = 0.0, fifteen = 0.0;
-  loadavg >> one >> five >> fifteen;
-  return Fixed(one, 2) + " " + Fixed(five, 2) + " " + Fixed(fifteen, 2);
-}
-
-std::string UtcNow()
-{
-  const std::time_t now = std::time(nullptr);
-  std::tm utc{};
-  gmtime_r(&now, &utc);
-  char text[32];
-  std::strftime(text, sizeof(text), "%Y-%m-%dT%H:%M:%SZ", &utc);
-  return text;
-}
-
-Json MachineInfo()
-{
-  return Json::Object()
+  return JsonValue::Object()
     .Set("cpu_model", CpuModel())
     .Set("hardware_threads", std::thread::hardware_concurrency())
-    .Set("load_average_at_start", LoadAverage())
+    .Set("load_average_at_start", LoadAverageText())
     .Set("date_utc", UtcNow())
     .Set("compiler", __VERSION__)
 #ifdef NDEBUG
@@ -1915,14 +1671,14 @@ Json MachineInfo()
     .Set("meshoptimizer_version", MESHOPTIMIZER_VERSION);
 }
 
-Json SettingsInfo(const Settings& s)
+JsonValue SettingsInfo(const Settings& s)
 {
-  Json goals = Json::Object();
+  JsonValue goals = JsonValue::Object();
   for (const Goal* goal : AllGoals)
   {
     goals.Set(goal->Name, goal->Text());
   }
-  return Json::Object()
+  return JsonValue::Object()
     .Set("quick", s.Quick)
     .Set("data_directory", s.DataDirectory)
     .Set("build_runs", s.BuildRuns)
@@ -1935,7 +1691,7 @@ Json SettingsInfo(const Settings& s)
     .Set("meshopt_settings", "meshopt_simplify, target 10% of indices, target_error 1e9, options 0")
     .Set("quality_only", s.QualityOnly)
     .Set("quality_resolutions", [] {
-      Json r = Json::Array();
+      JsonValue r = JsonValue::Array();
       for (double x : HausdorffResolutions)
       {
         r.Push(x);
@@ -1977,46 +1733,38 @@ enum class Parsed
 
 Parsed ParseArguments(int argc, char* argv[], Settings& settings)
 {
-  for (int i = 1; i < argc; ++i)
+  bool help = false, hausdorffAll = false;
+  BenchmarkArguments arguments(argc, argv);
+  arguments.AddFlag("--help", help);
+  arguments.AddFlag("-h", help);
+  arguments.AddFlag("--quick", settings.Quick);
+  arguments.AddFlag("--quality-only", settings.QualityOnly);
+  arguments.AddRepeatedText("--mesh", settings.MeshNames);
+  arguments.AddText("--json", settings.JsonPath);
+  arguments.AddText("--data", settings.DataDirectory);
+  arguments.AddFlag("--hausdorff-all", hausdorffAll);
+  try
   {
-    const std::string arg = argv[i];
-    const bool hasValue = i + 1 < argc;
-    if (arg == "--quick")
-    {
-      settings.Quick = true;
-      settings.MinMeasureSeconds = 0.02;
-    }
-    else if (arg == "--quality-only")
-    {
-      settings.QualityOnly = true;
-    }
-    else if (arg == "--mesh" && hasValue)
-    {
-      settings.MeshNames.push_back(argv[++i]);
-    }
-    else if (arg == "--json" && hasValue)
-    {
-      settings.JsonPath = argv[++i];
-    }
-    else if (arg == "--data" && hasValue)
-    {
-      settings.DataDirectory = argv[++i];
-    }
-    else if (arg == "--hausdorff-all")
-    {
-      settings.HausdorffMaxTriangles = std::numeric_limits<size_t>::max();
-    }
-    else if (arg == "--help" || arg == "-h")
-    {
-      PrintUsage(std::cout);
-      return Parsed::Help;
-    }
-    else
-    {
-      std::cerr << "unknown or incomplete argument: " << arg << "\n";
-      PrintUsage(std::cerr);
-      return Parsed::Error;
-    }
+    arguments.Parse();
+  }
+  catch (const std::runtime_error& error)
+  {
+    std::cerr << error.what() << "\n";
+    PrintUsage(std::cerr);
+    return Parsed::Error;
+  }
+  if (help)
+  {
+    PrintUsage(std::cout);
+    return Parsed::Help;
+  }
+  if (settings.Quick)
+  {
+    settings.MinMeasureSeconds = 0.02;
+  }
+  if (hausdorffAll)
+  {
+    settings.HausdorffMaxTriangles = std::numeric_limits<size_t>::max();
   }
   return Parsed::Run;
 }
@@ -2025,11 +1773,11 @@ int Run(const Settings& settings)
 {
   omerr().disable(); // refused faces are counted instead (OpenMeshDecimate)
   std::cout << "TOMBenchmark on " << CpuModel() << " (" << std::thread::hardware_concurrency()
-            << " threads, load average " << LoadAverage() << "), " << UtcNow()
+            << " threads, load average " << LoadAverageText() << "), " << UtcNow()
             << (settings.Quick ? " (quick)" : "") << std::endl;
-  const Json machine = MachineInfo();
+  const JsonValue machine = MachineInfo();
   std::vector<MeshReport> reports;
-  const double total = Seconds([&]() {
+  const double total = SecondsOf([&]() {
     for (const MeshSource& source : ChooseMeshes(settings))
     {
       reports.push_back(MeasureMesh(settings, source));
@@ -2050,15 +1798,15 @@ int Run(const Settings& settings)
   }
   goals.PrintSummary(std::cout);
 
-  Json meshes = Json::Array();
+  JsonValue meshes = JsonValue::Array();
   for (const MeshReport& report : reports)
   {
     meshes.Push(ToJson(report));
   }
-  const Json document = Json::Object()
+  const JsonValue document = JsonValue::Object()
                           .Set("benchmark", "TOMBenchmark")
                           .Set("machine", machine)
-                          .Set("load_average_at_end", LoadAverage())
+                          .Set("load_average_at_end", LoadAverageText())
                           .Set("settings", SettingsInfo(settings))
                           .Set("total_s", total)
                           .Set("meshes", std::move(meshes))

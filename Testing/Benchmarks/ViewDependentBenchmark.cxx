@@ -28,23 +28,51 @@
  * Missed goals are reported, not failed: the exit status is nonzero only for
  * errors.
  */
-#include "BenchmarkSupport.h"
+#include "BenchmarkArguments.h"
+#include "BenchmarkImages.h"
+#include "BenchmarkJson.h"
+#include "BenchmarkStatistics.h"
+#include "BenchmarkTiming.h"
+#include "CameraPose.h"
+#include "LoopSubdivision.h"
+#include "MachineInfo.h"
 #include "MergeTreeAttributes.h"
+#include "MeshConversion.h"
+#include "PlotScript.h"
+#include "PolicyGoal.h"
+#include "PolicySelection.h"
 #include "TestMeshIO.h"
+#include "W1CameraPath.h"
+#include "W1Scene.h"
+#include "W1SceneSpecification.h"
 #include "vtkMergeTreeBuilder.h"
 #include "vtkMergeTreeFieldData.h"
 #include "vtkMultiresolutionPolyDataMapper.h"
+#include "vtkTOMBuilder.h"
+#include "vtkTOMFieldData.h"
 #include "vtkTimeCriticalRenderer.h"
 
 #include <vtkActor.h>
+#include <vtkCamera.h>
+#include <vtkCellArray.h>
+#include <vtkDataArray.h>
 #include <vtkDoubleArray.h>
 #include <vtkFieldData.h>
+#include <vtkImageData.h>
 #include <vtkLight.h>
-#include <vtkLoopSubdivisionFilter.h>
 #include <vtkMultiBlockDataSet.h>
+#include <vtkNew.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
 #include <vtkPolyDataMapper.h>
 #include <vtkProperty.h>
+#include <vtkRenderWindow.h>
+#include <vtkRenderer.h>
+#include <vtkSmartPointer.h>
 #include <vtkStringArray.h>
+#include <vtkTransform.h>
+#include <vtkUnsignedCharArray.h>
 #include <vtkXMLPolyDataReader.h>
 #include <vtkXMLPolyDataWriter.h>
 
@@ -143,11 +171,11 @@ struct Settings
   /// Shading weight of the merge tree's errors (MergeTreeErrorOptions); < 0: the builder's.
   double ShadingWeight = -1.0;
   bool Mixed = false;
-  int MixedObjects = 529;
+  int MixedObjects = W1SceneSpecification::Get().DefaultObjects;
   int MixedFrames = 0;        ///< 0: Frames
   int MixedReferenceStep = 6; ///< PSNR of the mixed scene on every k-th frame
   bool MixedCows = true;      ///< also the cows alone (W1's TimeCritical) on the mixed path
-  unsigned Seed = 20001;
+  unsigned Seed = W1SceneSpecification::Get().DefaultSeed;
   std::string W1Json;
   std::string Output = "viewdependent-output";
   std::string Json; ///< default: Output/viewdependent.json
@@ -193,134 +221,40 @@ void PrintUsage()
 Settings ParseArguments(int argc, char* argv[])
 {
   Settings settings;
-  bool framesSet = false, mixedObjectsSet = false;
+  bool help = false, framesSet = false, mixedObjectsSet = false, noPlot = false;
   std::string policies;
-  for (int i = 1; i < argc; ++i)
+  const auto atLeast = [](double minimum) { return [minimum](double x) { return x >= minimum; }; };
+  BenchmarkArguments arguments(argc, argv);
+  arguments.AddFlag("--help", help);
+  arguments.AddFlag("-h", help);
+  arguments.AddFlag("--quick", settings.Quick);
+  arguments.AddInteger("--frames", settings.Frames, 10, 1000000, &framesSet);
+  arguments.AddText("--policies", policies);
+  arguments.AddNumber("--tau", settings.Tau, atLeast(0.0));
+  arguments.AddNumber("--budget-tau", settings.BudgetTau, atLeast(0.0));
+  arguments.AddNumber("--refinement-limit", settings.RefinementLimit, atLeast(0.0));
+  arguments.AddNumber("--target", settings.Target, atLeast(1e-3));
+  arguments.AddInteger("--warmup", settings.WarmupFrames, 0);
+  arguments.AddInteger("--loop", settings.LoopLevels, 0);
+  arguments.AddFlag("--rebuild", settings.Rebuild);
+  arguments.AddNumber("--shading-weight", settings.ShadingWeight, atLeast(0.0));
+  arguments.AddFlag("--mixed", settings.Mixed);
+  arguments.AddInteger("--mixed-objects", settings.MixedObjects, 1, 1000000, &mixedObjectsSet);
+  arguments.AddInteger("--mixed-frames", settings.MixedFrames, 10);
+  arguments.AddInteger("--mixed-step", settings.MixedReferenceStep, 1);
+  arguments.AddFlag("--no-mixed-cows", settings.MixedCows, false);
+  arguments.AddText("--w1-json", settings.W1Json);
+  arguments.AddText("--output", settings.Output);
+  arguments.AddText("--json", settings.Json);
+  arguments.AddText("--data", settings.DataDirectory);
+  arguments.AddFlag("--no-plot", noPlot);
+  arguments.Parse();
+  if (help)
   {
-    const std::string arg = argv[i];
-    const auto value = [&]() -> std::string {
-      if (i + 1 >= argc)
-      {
-        throw std::runtime_error("missing value after " + arg);
-      }
-      return argv[++i];
-    };
-    const auto integer = [&](int minimum) {
-      const std::string text = value();
-      char* end = nullptr;
-      const long parsed = std::strtol(text.c_str(), &end, 10);
-      if (end == text.c_str() || *end != '\0' || parsed < minimum || parsed > 1000000)
-      {
-        throw std::runtime_error("bad value for " + arg + ": " + text);
-      }
-      return static_cast<int>(parsed);
-    };
-    const auto real = [&](double minimum) {
-      const std::string text = value();
-      char* end = nullptr;
-      const double parsed = std::strtod(text.c_str(), &end);
-      if (end == text.c_str() || *end != '\0' || !std::isfinite(parsed) || parsed < minimum)
-      {
-        throw std::runtime_error("bad value for " + arg + ": " + text);
-      }
-      return parsed;
-    };
-    if (arg == "--help" || arg == "-h")
-    {
-      PrintUsage();
-      std::exit(0);
-    }
-    else if (arg == "--quick")
-    {
-      settings.Quick = true;
-    }
-    else if (arg == "--frames")
-    {
-      settings.Frames = integer(10);
-      framesSet = true;
-    }
-    else if (arg == "--policies")
-    {
-      policies = value();
-    }
-    else if (arg == "--tau")
-    {
-      settings.Tau = real(0.0);
-    }
-    else if (arg == "--budget-tau")
-    {
-      settings.BudgetTau = real(0.0);
-    }
-    else if (arg == "--refinement-limit")
-    {
-      settings.RefinementLimit = real(0.0);
-    }
-    else if (arg == "--target")
-    {
-      settings.Target = real(1e-3);
-    }
-    else if (arg == "--warmup")
-    {
-      settings.WarmupFrames = integer(0);
-    }
-    else if (arg == "--loop")
-    {
-      settings.LoopLevels = integer(0);
-    }
-    else if (arg == "--rebuild")
-    {
-      settings.Rebuild = true;
-    }
-    else if (arg == "--shading-weight")
-    {
-      settings.ShadingWeight = real(0.0);
-    }
-    else if (arg == "--mixed")
-    {
-      settings.Mixed = true;
-    }
-    else if (arg == "--mixed-objects")
-    {
-      settings.MixedObjects = integer(1);
-      mixedObjectsSet = true;
-    }
-    else if (arg == "--mixed-frames")
-    {
-      settings.MixedFrames = integer(10);
-    }
-    else if (arg == "--mixed-step")
-    {
-      settings.MixedReferenceStep = integer(1);
-    }
-    else if (arg == "--no-mixed-cows")
-    {
-      settings.MixedCows = false;
-    }
-    else if (arg == "--w1-json")
-    {
-      settings.W1Json = value();
-    }
-    else if (arg == "--output")
-    {
-      settings.Output = value();
-    }
-    else if (arg == "--json")
-    {
-      settings.Json = value();
-    }
-    else if (arg == "--data")
-    {
-      settings.DataDirectory = value();
-    }
-    else if (arg == "--no-plot")
-    {
-      settings.Plot = false;
-    }
-    else
-    {
-      throw std::runtime_error("unknown option " + arg + " (see --help)");
-    }
+    PrintUsage();
+    std::exit(0);
   }
+  settings.Plot = !noPlot;
   if (settings.Quick)
   {
     settings.Frames = framesSet ? settings.Frames : 24;
@@ -489,14 +423,7 @@ LargeObject MakeLargeObject(const Settings& settings)
     if (useIgea)
     {
       input = ToPolyData(tt::RemoveUnusedPoints(tt::WeldPoints(tt::LoadMesh(igea.string()))));
-      if (settings.LoopLevels > 0)
-      {
-        vtkNew<vtkLoopSubdivisionFilter> loop;
-        loop->SetNumberOfSubdivisions(settings.LoopLevels);
-        loop->SetInputData(input);
-        loop->Update();
-        input = loop->GetOutput();
-      }
+      input = LoopSubdivide(input, settings.LoopLevels);
     }
     else
     {
@@ -751,15 +678,15 @@ Statistics ComputeStatistics(const std::vector<FrameRecord>& frames, double targ
     return s;
   }
   s.Mean = Mean(measured);
-  s.Median = MedianOf(measured);
+  s.Median = Median(measured);
   s.Max = *std::max_element(measured.begin(), measured.end());
   s.ShareWithin = static_cast<double>(within) / static_cast<double>(measured.size());
   s.TrianglesMean = Mean(triangles);
   s.TrianglesShare = full > 0.0 ? s.TrianglesMean / full : NaN;
-  s.TrianglesMedianShare = full > 0.0 ? MedianOf(triangles) / full : NaN;
+  s.TrianglesMedianShare = full > 0.0 ? Median(triangles) / full : NaN;
   s.PSNRFrames = static_cast<int>(psnr.size());
   s.PSNRMean = Mean(psnr);
-  s.PSNRMedian = MedianOf(psnr);
+  s.PSNRMedian = Median(psnr);
   s.PSNRMin = psnr.empty() ? NaN : *std::min_element(psnr.begin(), psnr.end());
   s.RefinementMean = Mean(refinement);
   s.RefinementMax = refinement.empty() ? NaN : *std::max_element(refinement.begin(), refinement.end());
@@ -1181,7 +1108,7 @@ MixedResult RunMixed(const Settings& settings, const LargeObject& object)
   MixedResult result;
   const CowTOM cow = MakeCowTOM(settings.DataDirectory);
   const Scene scene = PlaceObjects(settings.MixedObjects, settings.Seed, cow.TOM, cow.Triangles);
-  const CameraPath path(scene, settings.MixedFrames);
+  const W1CameraPath path(scene, settings.MixedFrames);
   result.CowSource = cow.Source;
   result.CowSubstitute = cow.Substitute;
   result.Cows = static_cast<int>(scene.Objects.size());
@@ -1371,12 +1298,7 @@ MixedResult RunMixed(const Settings& settings, const LargeObject& object)
 //------------------------------------------------------------------------------
 // Goals, table, JSON
 
-struct Goal
-{
-  std::string Name, Required, Measured;
-  bool Met = false;
-  bool Evaluated = true; ///< false when the run lacks what the goal compares with
-};
+using Goal = PolicyGoal;
 
 const PolicyRun* FindRun(const std::vector<PolicyRun>& runs, PolicyKind kind)
 {
@@ -1483,16 +1405,6 @@ void PrintHeader()
     "max ms", "<=110ms", "tris %", "tris", "PSNR dB", "PSNR med", "refine ms", "ref. max");
 }
 
-void PrintGoals(const std::vector<Goal>& goals)
-{
-  std::printf("\nW2 goals\n%-42s %-22s %-52s %s\n", "goal", "required", "measured", "status");
-  for (const Goal& g : goals)
-  {
-    std::printf("%-42s %-22s %-52s %s\n", g.Name.c_str(), g.Required.c_str(), g.Measured.c_str(),
-      !g.Evaluated ? "n/a" : g.Met ? "met" : "MISSED");
-  }
-}
-
 std::string StatisticsJson(const Statistics& s)
 {
   std::ostringstream out;
@@ -1590,14 +1502,7 @@ void WriteJson(const Settings& settings, const LargeObject& object, const Object
     }
     out << "}" << (p + 1 < runs.size() ? "," : "") << "\n";
   }
-  out << "  ],\n  \"goals\": [";
-  for (size_t g = 0; g < goals.size(); ++g)
-  {
-    out << (g ? ", " : "") << "{\"goal\": " << Quoted(goals[g].Name) << ", \"required\": "
-        << Quoted(goals[g].Required) << ", \"measured\": " << Quoted(goals[g].Measured)
-        << ", \"met\": " << (!goals[g].Evaluated ? "null" : goals[g].Met ? "true" : "false") << "}";
-  }
-  out << "]";
+  out << "  ],\n  \"goals\": " << GoalsJson(goals);
   if (mixed)
   {
     out << ",\n  \"mixed\": {\"cow_mesh\": " << Quoted(mixed->CowSource) << ", \"cow_substitute\": "
@@ -1648,12 +1553,7 @@ int main(int argc, char* argv[])
       return 2;
     }
     std::filesystem::create_directories(settings.Output);
-    double load[2] = { NaN, NaN };
-    double sample[3];
-    if (getloadavg(sample, 3) > 0)
-    {
-      load[0] = sample[0];
-    }
+    double load[2] = { LoadAverages()[0], NaN };
 
     std::cerr << "preparing the large object and its merge tree...\n";
     const LargeObject object = MakeLargeObject(settings);
@@ -1695,10 +1595,7 @@ int main(int argc, char* argv[])
     {
       mixed = std::make_unique<MixedResult>(RunMixed(settings, object));
     }
-    if (getloadavg(sample, 3) > 0)
-    {
-      load[1] = sample[0];
-    }
+    load[1] = LoadAverages()[0];
 
     const std::vector<Goal> goals = EvaluateGoals(runs, settings);
     std::printf("ViewDependentBenchmark: %s, %lld triangles, %d levels, %d frames at %dx%d%s\n",
@@ -1728,7 +1625,7 @@ int main(int argc, char* argv[])
     std::printf("(PSNR against the full-resolution frame of the same camera and light, identical "
                 "images counted as %.0f dB; refinement times in ms)\n",
       PSNRCap);
-    PrintGoals(goals);
+    PrintGoals("W2 goals", goals, 42, 52);
     if (mixed)
     {
       std::printf("\nmixed scene: %d cows (%lld triangles%s) + the object (%lld triangles) in "

@@ -20,6 +20,8 @@
 // times and keeps each frame's fastest. Under callgrind (--instr-atstart=no)
 // only the unbounded W2-like budget updates are instrumented, or with
 // --w2-fixed (implies --w2-only) the fixed-accuracy updates.
+#include "BenchmarkArguments.h"
+#include "LoopSubdivision.h"
 #include "MergeTreeAttributes.h"
 #include "TOMBuilder.h"
 #include "TestMeshIO.h"
@@ -52,106 +54,6 @@ using namespace timecritical;
 
 namespace
 {
-/// One Loop subdivision (boundary vertices and edges: cubic B-spline rules).
-testing::TriangleMesh LoopSubdivide(const testing::TriangleMesh& in)
-{
-  const size_t np = in.NumberOfPoints(), nt = in.NumberOfTriangles();
-  std::map<std::pair<uint32_t, uint32_t>, std::array<uint32_t, 3>> edges; // opposite a, b; new id
-  auto key = [](uint32_t a, uint32_t b) { return std::make_pair(std::min(a, b), std::max(a, b)); };
-  for (size_t t = 0; t < nt; ++t)
-  {
-    for (int k = 0; k < 3; ++k)
-    {
-      const uint32_t a = in.Triangles[3 * t + k], b = in.Triangles[3 * t + (k + 1) % 3];
-      const uint32_t c = in.Triangles[3 * t + (k + 2) % 3];
-      auto it = edges.find(key(a, b));
-      if (it == edges.end())
-      {
-        edges.emplace(key(a, b), std::array<uint32_t, 3>{ c, UINT32_MAX, 0 });
-      }
-      else
-      {
-        it->second[1] = c;
-      }
-    }
-  }
-  testing::TriangleMesh out;
-  out.Points.assign(3 * (np + edges.size()), 0.0);
-  std::vector<double> ring(3 * np, 0.0), bnd(3 * np, 0.0);
-  std::vector<uint32_t> valence(np, 0), boundary(np, 0);
-  uint32_t next = uint32_t(np);
-  for (auto& e : edges)
-  {
-    const uint32_t a = e.first.first, b = e.first.second;
-    e.second[2] = next++;
-    const bool open = e.second[1] == UINT32_MAX;
-    for (int k = 0; k < 3; ++k)
-    {
-      const double pa = in.Points[3 * a + k], pb = in.Points[3 * b + k];
-      double p = 0.5 * (pa + pb);
-      if (!open)
-      {
-        p = 0.375 * (pa + pb) +
-          0.125 * (in.Points[3 * size_t(e.second[0]) + k] + in.Points[3 * size_t(e.second[1]) + k]);
-      }
-      out.Points[3 * size_t(e.second[2]) + k] = p;
-      ring[3 * a + k] += pb;
-      ring[3 * b + k] += pa;
-      if (open)
-      {
-        bnd[3 * a + k] += pb;
-        bnd[3 * b + k] += pa;
-      }
-    }
-    ++valence[a];
-    ++valence[b];
-    boundary[a] += open;
-    boundary[b] += open;
-  }
-  const double pi = 3.14159265358979323846;
-  for (size_t v = 0; v < np; ++v)
-  {
-    const double n = valence[v];
-    double beta = 0.0, self = 1.0;
-    if (boundary[v] == 2)
-    {
-      self = 0.75;
-    }
-    else if (boundary[v] == 0 && n > 0)
-    {
-      const double c = 0.375 + 0.25 * std::cos(2 * pi / n);
-      beta = (0.625 - c * c) / n;
-      self = 1.0 - n * beta;
-    }
-    for (int k = 0; k < 3; ++k)
-    {
-      double p = self * in.Points[3 * v + k];
-      p += boundary[v] == 2 ? 0.125 * bnd[3 * v + k] : beta * ring[3 * v + k];
-      out.Points[3 * v + k] = p;
-    }
-  }
-  out.Triangles.reserve(12 * nt);
-  for (size_t t = 0; t < nt; ++t)
-  {
-    uint32_t c[3], m[3];
-    for (int k = 0; k < 3; ++k)
-    {
-      c[k] = in.Triangles[3 * t + k];
-    }
-    for (int k = 0; k < 3; ++k)
-    {
-      m[k] = edges.at(key(c[k], c[(k + 1) % 3]))[2];
-    }
-    const uint32_t tris[4][3] = { { c[0], m[0], m[2] }, { m[0], c[1], m[1] },
-      { m[2], m[1], c[2] }, { m[0], m[1], m[2] } };
-    for (const auto& tri : tris)
-    {
-      out.Triangles.insert(out.Triangles.end(), tri, tri + 3);
-    }
-  }
-  return out;
-}
-
 void PrintUsage(FILE* out, const char* program)
 {
   std::fprintf(out,
@@ -172,13 +74,6 @@ void PrintUsage(FILE* out, const char* program)
 }
 
 /// Parses a whole argument as a number (false when it is not one).
-bool ParseNumber(const char* text, double& value)
-{
-  char* end = nullptr;
-  value = std::strtod(text, &end);
-  return end != text && *end == '\0' && std::isfinite(value);
-}
-
 int Run(int argc, char** argv);
 }
 
@@ -207,66 +102,41 @@ int Run(int argc, char** argv)
   bool plain = false;
   int repeat = 1;
   double limit = 0.005;
-  for (int i = 1; i < argc; ++i)
+  bool help = false, w2FixedFlag = false;
+  benchmark::BenchmarkArguments arguments(argc, argv);
+  arguments.AddFlag("--help", help);
+  arguments.AddFlag("-h", help);
+  arguments.AddText("--json", json);
+  arguments.AddInteger("--loop", loops, 0, 4);
+  arguments.AddNumber("--limit", limit, [](double x) { return x >= 0.0; });
+  arguments.AddFlag("--w2-only", w2Only);
+  arguments.AddFlag("--w2-fixed", w2FixedFlag);
+  arguments.AddFlag("--plain", plain);
+  arguments.AddInteger("--repeat", repeat, 1, 100);
+  arguments.AddPositional(path);
+  try
   {
-    const std::string a = argv[i];
-    double number = 0.0;
-    if (a == "--help" || a == "-h")
-    {
-      PrintUsage(stdout, argv[0]);
-      return 0;
-    }
-    else if (a == "--json" && i + 1 < argc)
-    {
-      json = argv[++i];
-    }
-    else if (a == "--loop" && i + 1 < argc && ParseNumber(argv[i + 1], number) && number >= 0 &&
-      number <= 4 && number == std::floor(number))
-    {
-      loops = int(number);
-      ++i;
-    }
-    else if (a == "--limit" && i + 1 < argc && ParseNumber(argv[i + 1], number) && number >= 0)
-    {
-      limit = number;
-      ++i;
-    }
-    else if (a == "--w2-only")
-    {
-      w2Only = true;
-    }
-    else if (a == "--w2-fixed")
-    {
-      w2Only = true;
-      w2Fixed = true;
-    }
-    else if (a == "--plain")
-    {
-      plain = true;
-    }
-    else if (a == "--repeat" && i + 1 < argc && ParseNumber(argv[i + 1], number) && number >= 1 &&
-      number <= 100 && number == std::floor(number))
-    {
-      repeat = int(number);
-      ++i;
-    }
-    else if (a.empty() || a[0] == '-')
-    {
-      std::fprintf(stderr, "%s: bad or incomplete argument '%s'\n", argv[0], a.c_str());
-      PrintUsage(stderr, argv[0]);
-      return 2;
-    }
-    else
-    {
-      path = a;
-    }
+    arguments.Parse();
+  }
+  catch (const std::runtime_error& error)
+  {
+    std::fprintf(stderr, "%s: %s\n", argv[0], error.what());
+    PrintUsage(stderr, argv[0]);
+    return 2;
+  }
+  if (help)
+  {
+    PrintUsage(stdout, argv[0]);
+    return 0;
+  }
+  if (w2FixedFlag)
+  {
+    w2Only = true;
+    w2Fixed = true;
   }
   testing::TriangleMesh mesh =
     testing::RemoveUnusedPoints(testing::WeldPoints(testing::LoadMesh(path)));
-  for (int i = 0; i < loops; ++i)
-  {
-    mesh = LoopSubdivide(mesh);
-  }
+  mesh = benchmark::LoopSubdivide(mesh, loops);
   const TOMBuildResult r = TOMBuilder().Build(
     mesh.Points.data(), mesh.NumberOfPoints(), mesh.Triangles.data(), mesh.NumberOfTriangles());
   std::vector<double> points(3 * r.VertexOrder.size());

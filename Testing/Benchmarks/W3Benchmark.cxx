@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
- * W3 scale benchmark (issue 12, item 6): a field of at least 2,000 objects and
+ * W3 scale benchmark: a field of at least 2,000 objects and
  * 10 million triangles, replicas of the shared meshes (cow, spot, teapot,
  * homer, fandisk, bunny, igea) and of generated ones (tori, a bumpy sphere, a
  * subdivided cube), one vtkMultiresolutionPolyDataMapper in a
@@ -22,20 +22,46 @@
  * Per frame: wall-clock time around Render() (+ WaitForCompletion),
  * triangles drawn, predicted time. Prints and writes w3.json.
  */
-#include "BenchmarkSupport.h"
+#include "BenchmarkArguments.h"
+#include "BenchmarkImages.h"
+#include "BenchmarkJson.h"
+#include "BenchmarkRandom.h"
+#include "BenchmarkStatistics.h"
+#include "BenchmarkTiming.h"
+#include "CameraPose.h"
+#include "MachineInfo.h"
+#include "MeshConversion.h"
+#include "PlotScript.h"
+#include "PolicySelection.h"
+#include "TestMeshIO.h"
+#include "W1CameraPath.h"
+#include "W1Scene.h"
+#include "vtkTOMBuilder.h"
 
 #include "vtkMultiresolutionPolyDataMapper.h"
 #include "vtkTOMFieldData.h"
 #include "vtkTimeCriticalRenderer.h"
 
 #include <vtkActor.h>
+#include <vtkCamera.h>
 #include <vtkCellArray.h>
+#include <vtkDataArray.h>
 #include <vtkFieldData.h>
 #include <vtkFloatArray.h>
+#include <vtkImageData.h>
 #include <vtkMultiBlockDataSet.h>
+#include <vtkNew.h>
 #include <vtkObjectFactory.h>
 #include <vtkOpenGLVertexBufferObject.h>
 #include <vtkOpenGLVertexBufferObjectGroup.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+#include <vtkRenderWindow.h>
+#include <vtkRenderer.h>
+#include <vtkSmartPointer.h>
+#include <vtkTransform.h>
+#include <vtkUnsignedCharArray.h>
 #include <vtkXMLPolyDataReader.h>
 #include <vtkXMLPolyDataWriter.h>
 
@@ -117,14 +143,6 @@ double PeakRSS()
     }
   }
   return 0.0;
-}
-
-std::string LoadAverage()
-{
-  std::ifstream in("/proc/loadavg");
-  std::string one, five, fifteen;
-  in >> one >> five >> fifteen;
-  return one + " " + five + " " + fifteen;
 }
 
 struct Kind
@@ -392,66 +410,56 @@ void Usage()
                "  --scale F      replicas per kind times F (default 1; --quick: 0.02)\n"
                "  --warmup N     untimed frames at the first camera after the first render\n"
                "                 (default 3, as W1)\n"
-               "  --quick        a small scene, 20 frames (smoke test)\n"
+               "  --quick        a small scene (--scale 0.02), 20 frames (smoke test)\n"
                "  --no-plot      accepted for scripts/benchmark-runner.sh (there is no plot)\n";
 }
 } // namespace
 
 int main(int argc, char* argv[])
 {
-  std::filesystem::path output = "w3-output";
+  std::string outputText = "w3-output";
   std::string data = TIMECRITICAL_SHARED_DATA_DIR;
   int frames = 120;
   double target = 0.1;
   double scale = 1.0;
   int warmup = 3;
-  for (int i = 1; i < argc; ++i)
+  bool help = false, quick = false, noPlot = false, framesSet = false, scaleSet = false;
+  try
   {
-    const std::string arg = argv[i];
-    auto next = [&]() -> std::string
-    {
-      if (i + 1 >= argc)
-      {
-        throw std::runtime_error(arg + " needs a value");
-      }
-      return argv[++i];
-    };
-    if (arg == "--output")
-      output = next();
-    else if (arg == "--data")
-      data = next();
-    else if (arg == "--frames")
-      frames = std::max(2, std::stoi(next()));
-    else if (arg == "--target")
-      target = std::stod(next());
-    else if (arg == "--warmup")
-      warmup = std::max(0, std::stoi(next()));
-    else if (arg == "--scale")
-      scale = std::stod(next());
-    else if (arg == "--quick")
-    {
-      scale = 0.02;
-      frames = 20;
-    }
-    else if (arg == "--no-plot")
-    {
-    }
-    else if (arg == "--help" || arg == "-h")
-    {
-      Usage();
-      return 0;
-    }
-    else
-    {
-      std::cerr << "unknown option " << arg << "\n";
-      Usage();
-      return 2;
-    }
+    BenchmarkArguments arguments(argc, argv);
+    arguments.AddFlag("--help", help);
+    arguments.AddFlag("-h", help);
+    arguments.AddFlag("--quick", quick);
+    arguments.AddFlag("--no-plot", noPlot); // accepted for scripts/benchmark-runner.sh
+    arguments.AddText("--output", outputText);
+    arguments.AddText("--data", data);
+    arguments.AddInteger("--frames", frames, 2, 1000000, &framesSet);
+    arguments.AddNumber("--target", target, [](double x) { return x > 0.0; });
+    arguments.AddInteger("--warmup", warmup, 0);
+    arguments.AddNumber("--scale", scale, [](double x) { return x > 0.0; }, &scaleSet);
+    arguments.Parse();
   }
+  catch (const std::exception& error)
+  {
+    std::cerr << "W3Benchmark: " << error.what() << "\n";
+    Usage();
+    return 2;
+  }
+  if (help)
+  {
+    Usage();
+    return 0;
+  }
+  if (quick)
+  {
+    scale = scaleSet ? scale : 0.02;
+    frames = framesSet ? frames : 20;
+  }
+  const std::filesystem::path output = outputText;
   try
   {
     std::filesystem::create_directories(output);
-    const std::string loadStart = LoadAverage();
+    const std::string loadStart = LoadAverageText();
     std::vector<Memory> memory;
     memory.push_back(Sample("start"));
     const bool shared = std::filesystem::is_regular_file(std::filesystem::path(data) / "cow.obj");
@@ -508,7 +516,7 @@ int main(int argc, char* argv[])
         placed.push_back(p);
       }
     }
-    Random random(2026u);
+    BenchmarkRandom random(2026u);
     for (size_t i = placed.size(); i > 1; --i)
     {
       const size_t j = static_cast<size_t>(random.Uniform(0.0, static_cast<double>(i)));
@@ -608,7 +616,7 @@ int main(int argc, char* argv[])
       records.push_back(record);
     }
     memory.push_back(Sample("after the flight"));
-    const std::string loadEnd = LoadAverage();
+    const std::string loadEnd = LoadAverageText();
 
     std::vector<double> times, triangles;
     int within = 0;
@@ -618,7 +626,7 @@ int main(int argc, char* argv[])
       triangles.push_back(static_cast<double>(r.Triangles));
       within += r.Measured <= 1.1 * target;
     }
-    const double mean = Mean(times), median = MedianOf(times);
+    const double mean = Mean(times), median = Median(times);
     const double maximum = *std::max_element(times.begin(), times.end());
     const double share = static_cast<double>(within) / records.size();
 

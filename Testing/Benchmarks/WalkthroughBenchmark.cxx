@@ -23,15 +23,26 @@
  *   WalkthroughBenchmark [--quick] [--frames N] [--objects N] [--policies LIST]
  *                        [--target S] [--output DIR] [--json FILE] [--data DIR]
  */
-#include "BenchmarkSupport.h"
+#include "BenchmarkArguments.h"
+#include "BenchmarkImages.h"
+#include "BenchmarkJson.h"
+#include "BenchmarkStatistics.h"
+#include "BenchmarkTiming.h"
+#include "CameraPose.h"
+#include "MachineInfo.h"
+#include "MeshConversion.h"
+#include "PlotScript.h"
+#include "PolicyGoal.h"
+#include "PolicySelection.h"
 #include "TestMeshIO.h"
+#include "W1CameraPath.h"
+#include "W1Scene.h"
+#include "W1SceneExport.h"
+#include "W1SceneSpecification.h"
 #include "vtkMultiresolutionPolyDataMapper.h"
 #include "vtkTOMBuilder.h"
 #include "vtkTOMFieldData.h"
 #include "vtkTimeCriticalRenderer.h"
-
-#include <OpenImageIO/imagebuf.h>
-#include <OpenImageIO/imagebufalgo.h>
 
 #include <vtkActor.h>
 #include <vtkCamera.h>
@@ -44,12 +55,10 @@
 #include <vtkMultiBlockDataSet.h>
 #include <vtkNew.h>
 #include <vtkObjectFactory.h>
-#include <vtkPNGWriter.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkPolyDataMapper.h>
-#include <vtkPolyDataNormals.h>
 #include <vtkProperty.h>
 #include <vtkQuadricDecimation.h>
 #include <vtkRenderWindow.h>
@@ -141,16 +150,17 @@ std::string CanonicalPolicyName(const std::string& name)
 struct Settings
 {
   bool Quick = false;
-  int Frames = 240;
-  int Objects = 529;
+  int Frames = W1SceneSpecification::Get().DefaultFrames;
+  int Objects = W1SceneSpecification::Get().DefaultObjects;
   double Target = 0.1;
   int WarmupFrames = 3;
   /// vtkLODProp3D tries every never-rendered LOD once before it selects by time.
   int LODWarmupFrames = 8;
-  unsigned Seed = 20001;
+  unsigned Seed = W1SceneSpecification::Get().DefaultSeed;
   std::string Output = "walkthrough-output";
   std::string Json; ///< default: Output/walkthrough.json
   std::string DataDirectory = TIMECRITICAL_SHARED_DATA_DIR;
+  std::string SceneFile; ///< --write-scene: write W1's scene there and stop
   std::vector<const PolicyInfo*> Policies;
   bool Plot = true;
   /// Reddy's velocity and eccentricity factors (perceptual, not what PSNR rewards).
@@ -175,6 +185,8 @@ void PrintUsage()
        "  --data DIR      folder with cow.obj (default " TIMECRITICAL_SHARED_DATA_DIR ")\n"
        "  --seed N        seed of the object placement (default 20001)\n"
        "  --no-plot       do not run scripts/plot_walkthrough.py\n"
+       "  --write-scene FILE  write the scene (objects, transforms, colours, camera\n"
+       "                  path) as JSON and stop, without rendering\n"
        "  --no-perceptual TimeCritical without Reddy's velocity and eccentricity factors\n"
        "  --safety K      TimeCritical's safety factor (default 1.5)\n"
        "  --family N      degradation family: 0 Hitchner (default), 1 Funkhouser,\n"
@@ -184,104 +196,34 @@ void PrintUsage()
 Settings ParseArguments(int argc, char* argv[])
 {
   Settings settings;
-  bool framesSet = false;
-  bool objectsSet = false;
+  bool help = false, framesSet = false, objectsSet = false, noPlot = false, noPerceptual = false;
   std::string policies;
-  for (int i = 1; i < argc; ++i)
+  BenchmarkArguments arguments(argc, argv);
+  arguments.AddFlag("--help", help);
+  arguments.AddFlag("-h", help);
+  arguments.AddFlag("--quick", settings.Quick);
+  arguments.AddInteger("--frames", settings.Frames, 10, 1000000, &framesSet);
+  arguments.AddInteger("--objects", settings.Objects, 1, 1000000, &objectsSet);
+  arguments.AddInteger("--warmup", settings.WarmupFrames, 0);
+  arguments.AddUnsigned("--seed", settings.Seed);
+  arguments.AddNumber("--target", settings.Target, [](double x) { return x > 0.0; });
+  arguments.AddText("--policies", policies);
+  arguments.AddText("--output", settings.Output);
+  arguments.AddText("--json", settings.Json);
+  arguments.AddText("--data", settings.DataDirectory);
+  arguments.AddText("--write-scene", settings.SceneFile);
+  arguments.AddFlag("--no-plot", noPlot);
+  arguments.AddFlag("--no-perceptual", noPerceptual);
+  arguments.AddNumber("--safety", settings.SafetyFactor);
+  arguments.AddInteger("--family", settings.Family, 0, 3);
+  arguments.Parse();
+  if (help)
   {
-    const std::string arg = argv[i];
-    const auto value = [&]() -> std::string {
-      if (i + 1 >= argc)
-      {
-        throw std::runtime_error("missing value after " + arg);
-      }
-      return argv[++i];
-    };
-    const auto integer = [&](int minimum) {
-      const std::string text = value();
-      char* end = nullptr;
-      const long parsed = std::strtol(text.c_str(), &end, 10);
-      if (end == text.c_str() || *end != '\0' || parsed < minimum || parsed > 1000000)
-      {
-        throw std::runtime_error("bad value for " + arg + ": " + text);
-      }
-      return static_cast<int>(parsed);
-    };
-    if (arg == "--help" || arg == "-h")
-    {
-      PrintUsage();
-      std::exit(0);
-    }
-    else if (arg == "--quick")
-    {
-      settings.Quick = true;
-    }
-    else if (arg == "--frames")
-    {
-      settings.Frames = integer(10);
-      framesSet = true;
-    }
-    else if (arg == "--objects")
-    {
-      settings.Objects = integer(1);
-      objectsSet = true;
-    }
-    else if (arg == "--warmup")
-    {
-      settings.WarmupFrames = integer(0);
-    }
-    else if (arg == "--seed")
-    {
-      settings.Seed = static_cast<unsigned>(integer(0));
-    }
-    else if (arg == "--target")
-    {
-      const std::string text = value();
-      char* end = nullptr;
-      settings.Target = std::strtod(text.c_str(), &end);
-      if (end == text.c_str() || *end != '\0' || !(settings.Target > 0.0) ||
-        !std::isfinite(settings.Target))
-      {
-        throw std::runtime_error("bad value for --target: " + text);
-      }
-    }
-    else if (arg == "--policies")
-    {
-      policies = value();
-    }
-    else if (arg == "--output")
-    {
-      settings.Output = value();
-    }
-    else if (arg == "--json")
-    {
-      settings.Json = value();
-    }
-    else if (arg == "--data")
-    {
-      settings.DataDirectory = value();
-    }
-    else if (arg == "--no-plot")
-    {
-      settings.Plot = false;
-    }
-    else if (arg == "--no-perceptual")
-    {
-      settings.Perceptual = false;
-    }
-    else if (arg == "--safety")
-    {
-      settings.SafetyFactor = std::stod(value());
-    }
-    else if (arg == "--family")
-    {
-      settings.Family = std::stoi(value());
-    }
-    else
-    {
-      throw std::runtime_error("unknown option " + arg + " (see --help)");
-    }
+    PrintUsage();
+    std::exit(0);
   }
+  settings.Plot = !noPlot;
+  settings.Perceptual = !noPerceptual;
   if (settings.Quick)
   {
     settings.Frames = framesSet ? settings.Frames : 30;
@@ -470,7 +412,7 @@ void ComputeHeavyStatistics(
   }
   s.HeavyCV = std::sqrt(variance / static_cast<double>(times.size())) / s.HeavyMean;
   s.HeavyShareWithin = static_cast<double>(within) / static_cast<double>(times.size());
-  s.HeavyPSNRMedian = MedianOf(psnr);
+  s.HeavyPSNRMedian = Median(psnr);
 }
 
 Statistics ComputeStatistics(const std::vector<FrameRecord>& frames, double target)
@@ -516,7 +458,7 @@ Statistics ComputeStatistics(const std::vector<FrameRecord>& frames, double targ
     return s;
   }
   s.Mean = Mean(measured);
-  s.Median = MedianOf(measured);
+  s.Median = Median(measured);
   s.Min = *std::min_element(measured.begin(), measured.end());
   s.Max = *std::max_element(measured.begin(), measured.end());
   double variance = 0.0;
@@ -534,7 +476,7 @@ Statistics ComputeStatistics(const std::vector<FrameRecord>& frames, double targ
   s.OptimizerMax = optimizer.empty() ? NaN : *std::max_element(optimizer.begin(), optimizer.end());
   s.IterationsMean = Mean(iterations);
   s.PSNRMean = Mean(psnr);
-  s.PSNRMedian = MedianOf(psnr);
+  s.PSNRMedian = Median(psnr);
   s.PSNRMin = psnr.empty() ? NaN : *std::min_element(psnr.begin(), psnr.end());
   s.TrianglesMean = Mean(triangles);
   return s;
@@ -554,7 +496,7 @@ class Walkthrough
 {
 public:
   Walkthrough(const Settings& settings, const ObjectMesh& object, const Scene& scene,
-    const CameraPath& path)
+    const W1CameraPath& path)
     : Options(settings)
     , Object(object)
     , Layout(scene)
@@ -602,7 +544,7 @@ private:
   const Settings& Options;
   const ObjectMesh& Object;
   const Scene& Layout;
-  const CameraPath& Path;
+  const W1CameraPath& Path;
 
   vtkNew<vtkRenderWindow> Window;
   vtkNew<vtkCamera> Camera;
@@ -1037,7 +979,7 @@ void Walkthrough::MeasureNoiseFloor()
   }
   this->Noise.Frames = frames;
   this->Noise.Triangles = this->Mapper->GetRenderedTriangles();
-  this->Noise.Median = MedianOf(times);
+  this->Noise.Median = Median(times);
   this->Noise.Mean = Mean(times);
   this->Noise.Max = *std::max_element(times.begin(), times.end());
   double variance = 0.0;
@@ -1055,12 +997,7 @@ void Walkthrough::MeasureNoiseFloor()
 //------------------------------------------------------------------------------
 // Output
 
-struct Goal
-{
-  std::string Name, Required, Measured;
-  bool Met = false;
-  bool Evaluated = true; ///< false when the run lacks what the goal compares with
-};
+using Goal = PolicyGoal;
 
 std::vector<Goal> EvaluateGoals(
   const std::vector<PolicyRun>& runs, double target, const Walkthrough::NoiseFloor& noise)
@@ -1197,18 +1134,12 @@ void PrintTable(const std::vector<PolicyRun>& runs, const std::vector<Goal>& goa
   }
   if (!goals.empty())
   {
-    std::printf("\nTimeCritical goals\n%-40s %-22s %-32s %s\n", "goal", "required", "measured",
-      "status");
-    for (const Goal& g : goals)
-    {
-      std::printf("%-40s %-22s %-32s %s\n", g.Name.c_str(), g.Required.c_str(),
-        g.Measured.c_str(), !g.Evaluated ? "n/a" : g.Met ? "met" : "MISSED");
-    }
+    PrintGoals("TimeCritical goals", goals, 40, 32);
   }
 }
 
 void WriteJson(const Settings& settings, const ObjectMesh& object, const Scene& scene,
-  const CameraPath& path, const Walkthrough& walk, const std::vector<PolicyRun>& runs,
+  const W1CameraPath& path, const Walkthrough& walk, const std::vector<PolicyRun>& runs,
   const std::vector<Goal>& goals, const double load[2])
 {
   std::ofstream out(settings.Json);
@@ -1344,15 +1275,7 @@ void WriteJson(const Settings& settings, const ObjectMesh& object, const Scene& 
     }
     out << "\n     }}" << (p + 1 < runs.size() ? "," : "") << "\n";
   }
-  out << "  ],\n  \"goals\": [";
-  for (size_t g = 0; g < goals.size(); ++g)
-  {
-    out << (g ? ", " : "") << "{\"goal\": " << Quoted(goals[g].Name) << ", \"required\": "
-        << Quoted(goals[g].Required) << ", \"measured\": " << Quoted(goals[g].Measured)
-        << ", \"met\": " << (!goals[g].Evaluated ? "null" : goals[g].Met ? "true" : "false")
-        << "}";
-  }
-  out << "]\n}\n";
+  out << "  ],\n  \"goals\": " << GoalsJson(goals) << "\n}\n";
   if (!out)
   {
     throw std::runtime_error("error writing " + settings.Json);
@@ -1371,6 +1294,16 @@ int main(int argc, char* argv[])
   try
   {
     const Settings settings = ParseArguments(argc, argv);
+    if (!settings.SceneFile.empty())
+    {
+      const CowTOM object = MakeCowTOM(settings.DataDirectory);
+      const Scene scene =
+        PlaceObjects(settings.Objects, settings.Seed, object.TOM, object.Triangles);
+      WriteW1SceneJson(settings.SceneFile, object, scene, W1CameraPath(scene, settings.Frames),
+        settings.Frames, settings.Seed);
+      std::cerr << "scene: " << settings.SceneFile << "\n";
+      return 0;
+    }
     if (!std::getenv("DISPLAY"))
     {
       std::cerr << "WalkthroughBenchmark needs an X display (VTK here is an X build): run it "
@@ -1378,17 +1311,12 @@ int main(int argc, char* argv[])
       return 2;
     }
     std::filesystem::create_directories(settings.Output);
-    double load[2] = { NaN, NaN };
-    double sample[3];
-    if (getloadavg(sample, 3) > 0)
-    {
-      load[0] = sample[0];
-    }
+    double load[2] = { LoadAverages()[0], NaN };
 
     std::cerr << "building the object's TOM and LODs...\n";
     const ObjectMesh object = MakeObject(settings);
     const Scene scene = PlaceObjects(settings.Objects, settings.Seed, object.TOM, object.Triangles);
-    const CameraPath path(scene, settings.Frames);
+    const W1CameraPath path(scene, settings.Frames);
     std::cerr << "scene: " << scene.Objects.size() << " objects x " << object.Triangles
               << " triangles = " << scene.Triangles << " triangles (" << object.Source << ")\n";
 
@@ -1413,10 +1341,7 @@ int main(int argc, char* argv[])
     }
     std::cerr << "noise floor: one frame rendered again and again...\n";
     walk.MeasureNoiseFloor();
-    if (getloadavg(sample, 3) > 0)
-    {
-      load[1] = sample[0];
-    }
+    load[1] = LoadAverages()[0];
 
     const std::vector<Goal> goals = EvaluateGoals(runs, settings.Target, walk.Noise);
     std::printf("WalkthroughBenchmark: %zu objects, %lld triangles, %d frames, target %.0f ms%s\n",
