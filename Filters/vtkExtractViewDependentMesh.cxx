@@ -2,7 +2,9 @@
 #include "vtkExtractViewDependentMesh.h"
 
 #include "MergeTree.h"
-#include "TOMFilterSupport.h"
+#include "RefinementSettingChecks.h"
+#include "RefinementSettings.h"
+#include "RefinementViewFromCamera.h"
 #include "TOMMesh.h"
 #include "ViewDependentRefinement.h"
 #include "vtkMergeTreeFieldData.h"
@@ -18,7 +20,6 @@
 #include "vtkIdList.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
-#include "vtkMath.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
@@ -47,6 +48,10 @@ struct vtkExtractViewDependentMesh::Internals
   std::vector<uint32_t> DisplayAncestor;
   std::vector<vtkIdType> OutputPoint;
 };
+
+static_assert(vtkExtractViewDependentMesh::BUDGET == timecritical::RefinementModeBudget &&
+    vtkExtractViewDependentMesh::FIXED_ACCURACY == timecritical::RefinementModeFixedAccuracy,
+  "one numbering of the refinement modes (RefinementSettings.h)");
 
 vtkStandardNewMacro(vtkExtractViewDependentMesh);
 
@@ -164,10 +169,36 @@ void vtkExtractViewDependentMesh::SetViewportSize(int width, int height)
 
 void vtkExtractViewDependentMesh::SetPixelThreshold(double tau)
 {
-  if (timecritical::SetClampedSetting(this, "PixelThreshold", tau, 0.0,
-        std::numeric_limits<double>::infinity(), this->PixelThreshold))
+  if (timecritical::SetCheckedSetting(this, timecritical::CheckNonNegative("PixelThreshold", tau),
+        tau, this->PixelThreshold))
   {
     this->Modified();
+  }
+}
+
+void vtkExtractViewDependentMesh::SetTriangleBudget(vtkIdType budget)
+{
+  if (timecritical::SetCheckedSetting(this,
+        timecritical::CheckTriangleBudget("TriangleBudget", budget), budget, this->TriangleBudget))
+  {
+    this->Modified();
+  }
+}
+
+void vtkExtractViewDependentMesh::SetLegacyRefinementMode(int legacyMode)
+{
+  // Before the common numbering: 0 was fixed accuracy, 1 the triangle budget.
+  switch (legacyMode)
+  {
+    case 0:
+      this->SetRefinementMode(FIXED_ACCURACY);
+      break;
+    case 1:
+      this->SetRefinementMode(BUDGET);
+      break;
+    default:
+      vtkErrorMacro("The former RefinementMode must be 0 (fixed accuracy) or 1 (triangle budget), not "
+        << legacyMode << "; ignored.");
   }
 }
 
@@ -191,8 +222,8 @@ void vtkExtractViewDependentMesh::SetLightDirection(double x, double y, double z
 
 void vtkExtractViewDependentMesh::SetSilhouetteFactor(double factor)
 {
-  if (timecritical::SetClampedSetting(
-        this, "SilhouetteFactor", factor, 0.01, 1.0, this->SilhouetteFactor))
+  if (timecritical::SetCheckedSetting(this,
+        timecritical::CheckFactor("SilhouetteFactor", factor), factor, this->SilhouetteFactor))
   {
     this->Modified();
   }
@@ -200,8 +231,8 @@ void vtkExtractViewDependentMesh::SetSilhouetteFactor(double factor)
 
 void vtkExtractViewDependentMesh::SetHighlightFactor(double factor)
 {
-  if (timecritical::SetClampedSetting(
-        this, "HighlightFactor", factor, 0.01, 1.0, this->HighlightFactor))
+  if (timecritical::SetCheckedSetting(this,
+        timecritical::CheckFactor("HighlightFactor", factor), factor, this->HighlightFactor))
   {
     this->Modified();
   }
@@ -228,132 +259,159 @@ int vtkExtractViewDependentMesh::RequestData(
 {
   vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
+  this->ResetStatistics();
+  if (!input || !output)
+  {
+    vtkErrorMacro("Missing input or output polydata.");
+    return 0;
+  }
+  const int prepared = this->PrepareRefinement(input);
+  if (prepared <= 0)
+  {
+    return prepared == 0 ? 0 : 1;
+  }
+  this->UpdateFront();
+  if (this->GetAbortExecute())
+  {
+    return 1;
+  }
+  vtkNew<vtkIdList> pointIds;
+  const vtkIdType numberOfPoints = this->CopyDisplayVertices(input, output, pointIds);
+  if (!this->CopyDisplayTriangles(input, output))
+  {
+    return 0;
+  }
+  if (this->GenerateLocalLevels)
+  {
+    this->AddLocalLevels(output, pointIds);
+  }
+  PassFieldData(input, output);
+  this->NumberOfDisplayVertices = numberOfPoints;
+  this->NumberOfDisplayTriangles = output->GetNumberOfPolys();
+  return 1;
+}
+
+void vtkExtractViewDependentMesh::ResetStatistics()
+{
   this->NumberOfDisplayVertices = 0;
   this->NumberOfDisplayTriangles = 0;
   this->NumberOfSplits = 0;
   this->NumberOfMerges = 0;
   this->NumberOfForcedSplits = 0;
   this->RefinementTime = 0.0;
-  if (!input || !output)
-  {
-    vtkErrorMacro("Missing input or output polydata.");
-    return 0;
-  }
+}
+
+int vtkExtractViewDependentMesh::PrepareRefinement(vtkPolyData* input)
+{
   Internals& in = *this->Internal;
   if (input->GetNumberOfPoints() == 0 && !vtkMergeTreeFieldData::HasMergeTreeArrays(input))
   {
     // Empty input (say, an aborted build upstream): empty output, no message.
     in.Initialized = false;
-    return 1;
+    return -1;
   }
-
   // Read and validate the input only when it is a new one; the refinement
   // keeps its front otherwise, so a camera move is an incremental update.
-  if (!in.Initialized || in.Source != input || in.SourceTime != input->GetMTime())
+  if (in.Initialized && in.Source == input && in.SourceTime == input->GetMTime())
   {
-    in.Initialized = false;
-    if (!in.Reader->Read(input))
-    {
-      vtkErrorMacro("Input is not a valid merge tree: " << in.Reader->GetErrorMessage());
-      return 0;
-    }
-    if (!input->GetPoints() || input->GetNumberOfPoints() == 0)
-    {
-      // A valid but empty tree: nothing to refine.
-      return 1;
-    }
-    try
-    {
-      vtkDataArray* coordinates = input->GetPoints()->GetData();
-      if (auto* floats = vtkFloatArray::SafeDownCast(coordinates))
-      {
-        in.Refinement.Initialize(in.Reader->GetMesh(), in.Reader->GetTree(), floats->GetPointer(0));
-      }
-      else if (auto* doubles = vtkDoubleArray::SafeDownCast(coordinates))
-      {
-        in.Refinement.Initialize(
-          in.Reader->GetMesh(), in.Reader->GetTree(), doubles->GetPointer(0));
-      }
-      else
-      {
-        std::vector<double> copy(3 * static_cast<size_t>(input->GetNumberOfPoints()));
-        for (vtkIdType i = 0; i < input->GetNumberOfPoints(); ++i)
-        {
-          input->GetPoint(i, &copy[3 * static_cast<size_t>(i)]);
-        }
-        in.Refinement.Initialize(in.Reader->GetMesh(), in.Reader->GetTree(), copy.data());
-      }
-    }
-    catch (const std::exception& e)
-    {
-      vtkErrorMacro("The merge tree cannot be refined: " << e.what());
-      return 0;
-    }
-    in.Source = input;
-    in.SourceTime = input->GetMTime();
-    in.Initialized = true;
+    return 1;
   }
+  in.Initialized = false;
+  if (!in.Reader->Read(input))
+  {
+    vtkErrorMacro("Input is not a valid merge tree: " << in.Reader->GetErrorMessage());
+    return 0;
+  }
+  if (!input->GetPoints() || input->GetNumberOfPoints() == 0)
+  {
+    // A valid but empty tree: nothing to refine.
+    return -1;
+  }
+  if (!this->InitializeRefinement(input))
+  {
+    return 0;
+  }
+  in.Source = input;
+  in.SourceTime = input->GetMTime();
+  in.Initialized = true;
+  return 1;
+}
 
-  // The view, in the data's (world) coordinates.
-  vtkCamera* camera = this->Camera;
-  timecritical::RefinementView view;
-  camera->GetPosition(view.Eye);
-  camera->GetDirectionOfProjection(view.Direction);
-  view.Parallel = camera->GetParallelProjection() != 0;
-  view.ViewportHeight = this->ViewportSize[1];
-  const double aspect = static_cast<double>(this->ViewportSize[0]) / this->ViewportSize[1];
-  view.ViewAngle = camera->GetViewAngle();
-  if (camera->GetUseHorizontalViewAngle())
+bool vtkExtractViewDependentMesh::InitializeRefinement(vtkPolyData* input)
+{
+  Internals& in = *this->Internal;
+  try
   {
-    const double half = 0.5 * vtkMath::RadiansFromDegrees(view.ViewAngle);
-    view.ViewAngle = 2.0 * vtkMath::DegreesFromRadians(std::atan(std::tan(half) / aspect));
-  }
-  view.ParallelScale = camera->GetParallelScale();
-  if (this->FrustumCulling)
-  {
-    double planes[24];
-    camera->GetFrustumPlanes(aspect, planes);
-    // Left, right, bottom, top only: the clipping range of a camera handed
-    // to a filter is rarely fitted to the data.
-    view.NumberOfFrustumPlanes = 4;
-    for (int p = 0; p < 4; ++p)
+    vtkDataArray* coordinates = input->GetPoints()->GetData();
+    if (auto* floats = vtkFloatArray::SafeDownCast(coordinates))
     {
-      const double* plane = planes + 4 * p;
-      const double length = std::sqrt(plane[0] * plane[0] + plane[1] * plane[1] + plane[2] * plane[2]);
-      for (int c = 0; c < 4; ++c)
+      in.Refinement.Initialize(in.Reader->GetMesh(), in.Reader->GetTree(), floats->GetPointer(0));
+    }
+    else if (auto* doubles = vtkDoubleArray::SafeDownCast(coordinates))
+    {
+      in.Refinement.Initialize(in.Reader->GetMesh(), in.Reader->GetTree(), doubles->GetPointer(0));
+    }
+    else
+    {
+      std::vector<double> copy(3 * static_cast<size_t>(input->GetNumberOfPoints()));
+      for (vtkIdType i = 0; i < input->GetNumberOfPoints(); ++i)
       {
-        view.FrustumPlanes[p][c] = length > 0.0 ? plane[c] / length : 0.0;
+        input->GetPoint(i, &copy[3 * static_cast<size_t>(i)]);
       }
+      in.Refinement.Initialize(in.Reader->GetMesh(), in.Reader->GetTree(), copy.data());
     }
   }
-  std::copy(this->LightDirection, this->LightDirection + 3, view.LightDirection);
+  catch (const std::exception& e)
+  {
+    vtkErrorMacro("The merge tree cannot be refined: " << e.what());
+    return false;
+  }
+  return true;
+}
 
-  timecritical::ViewDependentRefinement& refinement = in.Refinement;
-  refinement.SetView(view);
-  refinement.SetPixelThreshold(this->PixelThreshold);
-  refinement.SetBackFaceSimplification(this->BackFaceSimplification);
-  refinement.SetSilhouetteRefinement(this->SilhouetteRefinement);
-  refinement.SetSilhouetteFactor(this->SilhouetteFactor);
-  refinement.SetHighlightRefinement(this->HighlightRefinement);
-  refinement.SetHighlightFactor(this->HighlightFactor);
-  const timecritical::RefinementStatistics& statistics = this->RefinementMode == TRIANGLE_BUDGET
-    ? refinement.UpdateBudget(static_cast<uint32_t>(this->TriangleBudget))
+void vtkExtractViewDependentMesh::UpdateFront()
+{
+  // The view, in the data's (world) coordinates. Left, right, bottom and top
+  // planes only: the clipping range of a camera handed to a filter is rarely
+  // fitted to the data.
+  timecritical::CameraViewOptions options;
+  options.ViewportWidth = this->ViewportSize[0];
+  options.ViewportHeight = this->ViewportSize[1];
+  options.NumberOfFrustumPlanes = this->FrustumCulling ? 4 : 0;
+  options.UseNearClippingDistance = false;
+  options.LightDirection = this->LightDirection;
+
+  timecritical::RefinementSettings settings;
+  settings.Mode = timecritical::ClampRefinementMode(this->RefinementMode);
+  settings.PixelThreshold = this->PixelThreshold;
+  settings.BackFaceSimplification = this->BackFaceSimplification;
+  settings.SilhouetteRefinement = this->SilhouetteRefinement;
+  settings.SilhouetteFactor = this->SilhouetteFactor;
+  settings.HighlightRefinement = this->HighlightRefinement;
+  settings.HighlightFactor = this->HighlightFactor;
+  settings.TriangleBudget = this->TriangleBudget;
+
+  timecritical::ViewDependentRefinement& refinement = this->Internal->Refinement;
+  refinement.SetView(timecritical::ComputeRefinementView(this->Camera, options));
+  timecritical::ApplyRefinementSettings(settings, refinement);
+  const timecritical::RefinementStatistics& statistics =
+    settings.Mode == timecritical::RefinementMode::Budget
+    ? refinement.UpdateBudget(static_cast<uint32_t>(settings.TriangleBudget))
     : refinement.UpdateFixedAccuracy();
   this->NumberOfSplits = statistics.Splits;
   this->NumberOfMerges = statistics.Merges;
   this->NumberOfForcedSplits = statistics.ForcedSplits;
   this->RefinementTime = statistics.Seconds;
-  if (this->GetAbortExecute())
-  {
-    return 1;
-  }
+}
 
+vtkIdType vtkExtractViewDependentMesh::CopyDisplayVertices(
+  vtkPolyData* input, vtkPolyData* output, vtkIdList* pointIds)
+{
   // Display vertices, in TOM order, become the output points.
-  const timecritical::TOMMesh& mesh = in.Reader->GetMesh();
-  const timecritical::MergeTree& tree = in.Reader->GetTree();
-  const uint32_t n = mesh.GetNumberOfVertices();
+  Internals& in = *this->Internal;
+  const timecritical::ViewDependentRefinement& refinement = in.Refinement;
+  const uint32_t n = in.Reader->GetMesh().GetNumberOfVertices();
   in.OutputPoint.assign(n, -1);
-  vtkNew<vtkIdList> pointIds;
   pointIds->Allocate(refinement.GetNumberOfDisplayVertices());
   for (uint32_t v = 0; v < n; ++v)
   {
@@ -379,11 +437,19 @@ int vtkExtractViewDependentMesh::RequestData(
   }
   outPD->CopyAllocate(input->GetPointData(), numberOfPoints);
   outPD->CopyData(input->GetPointData(), pointIds, vtkIdType(0));
+  return numberOfPoints;
+}
 
+bool vtkExtractViewDependentMesh::CopyDisplayTriangles(vtkPolyData* input, vtkPolyData* output)
+{
   // Each display triangle is a TOM triangle whose corners, moved up the merge
   // tree to their display ancestors, are distinct: the front replays the
   // build's collapses exactly. Going through the TOM triangles gives each
   // display triangle its source triangle, hence its cell data.
+  Internals& in = *this->Internal;
+  const timecritical::ViewDependentRefinement& refinement = in.Refinement;
+  const timecritical::TOMMesh& mesh = in.Reader->GetMesh();
+  const uint32_t n = mesh.GetNumberOfVertices();
   std::vector<uint32_t>& ancestor = in.DisplayAncestor;
   ancestor.resize(n);
   for (uint32_t v = 0; v < n; ++v)
@@ -416,7 +482,7 @@ int vtkExtractViewDependentMesh::RequestData(
     vtkErrorMacro("Internal error: the refinement reports "
       << expected << " display triangles, its display vertices give " << displayTriangles << ".");
     output->Initialize();
-    return 0;
+    return false;
   }
   vtkNew<vtkTypeInt64Array> offsets;
   offsets->SetNumberOfValues(displayTriangles + 1);
@@ -430,38 +496,49 @@ int vtkExtractViewDependentMesh::RequestData(
   vtkCellData* outCD = output->GetCellData();
   outCD->CopyAllocate(input->GetCellData(), displayTriangles);
   outCD->CopyData(input->GetCellData(), cellIds, vtkIdType(0));
+  return true;
+}
 
-  if (this->GenerateLocalLevels)
+void vtkExtractViewDependentMesh::AddLocalLevels(vtkPolyData* output, vtkIdList* pointIds)
+{
+  // How coarse the front is at a display vertex: one more than the highest
+  // level of its hidden children (the splits it still has to make), 0 when
+  // all its children are displayed.
+  const Internals& in = *this->Internal;
+  const timecritical::ViewDependentRefinement& refinement = in.Refinement;
+  const timecritical::TOMMesh& mesh = in.Reader->GetMesh();
+  const timecritical::MergeTree& tree = in.Reader->GetTree();
+  const uint32_t n = mesh.GetNumberOfVertices();
+  std::vector<uint16_t> vertexLevel(n, 0);
+  for (uint32_t v = n; v-- > mesh.BaseVertexCount;)
   {
-    // How coarse the front is at a display vertex: one more than the highest
-    // level of its hidden children (the splits it still has to make), 0 when
-    // all its children are displayed.
-    std::vector<uint16_t> vertexLevel(n, 0);
-    for (uint32_t v = n; v-- > mesh.BaseVertexCount;)
+    const uint32_t parent = mesh.Substitution[v];
+    if (!refinement.IsDisplayVertex(v) && refinement.IsDisplayVertex(parent))
     {
-      const uint32_t parent = mesh.Substitution[v];
-      if (!refinement.IsDisplayVertex(v) && refinement.IsDisplayVertex(parent))
-      {
-        vertexLevel[parent] =
-          std::max(vertexLevel[parent], static_cast<uint16_t>(tree.Level[v] + 1));
-      }
+      vertexLevel[parent] = std::max(vertexLevel[parent], static_cast<uint16_t>(tree.Level[v] + 1));
     }
-    vtkNew<vtkTypeUInt16Array> levels;
-    levels->SetName(LocalLevelArrayName());
-    levels->SetNumberOfValues(displayTriangles);
-    for (vtkIdType t = 0; t < displayTriangles; ++t)
-    {
-      uint16_t level = 0;
-      for (int k = 0; k < 3; ++k)
-      {
-        const vtkIdType point = pointIds->GetId(connectivity->GetValue(3 * t + k));
-        level = std::max(level, vertexLevel[point]);
-      }
-      levels->SetValue(t, level);
-    }
-    outCD->AddArray(levels);
   }
+  vtkCellArray* polys = output->GetPolys();
+  const vtkIdType displayTriangles = polys->GetNumberOfCells();
+  vtkNew<vtkTypeUInt16Array> levels;
+  levels->SetName(LocalLevelArrayName());
+  levels->SetNumberOfValues(displayTriangles);
+  vtkTypeInt64Array* connectivity = polys->GetConnectivityArray64();
+  for (vtkIdType t = 0; t < displayTriangles; ++t)
+  {
+    uint16_t level = 0;
+    for (int k = 0; k < 3; ++k)
+    {
+      const vtkIdType point = pointIds->GetId(connectivity->GetValue(3 * t + k));
+      level = std::max(level, vertexLevel[point]);
+    }
+    levels->SetValue(t, level);
+  }
+  output->GetCellData()->AddArray(levels);
+}
 
+void vtkExtractViewDependentMesh::PassFieldData(vtkPolyData* input, vtkPolyData* output)
+{
   // Ordinary field data passes; the TOM's and merge tree's describe the input only.
   vtkFieldData* outFD = output->GetFieldData();
   outFD->PassData(input->GetFieldData());
@@ -472,10 +549,6 @@ int vtkExtractViewDependentMesh::RequestData(
   {
     outFD->RemoveArray(name);
   }
-
-  this->NumberOfDisplayVertices = numberOfPoints;
-  this->NumberOfDisplayTriangles = displayTriangles;
-  return 1;
 }
 
 void vtkExtractViewDependentMesh::PrintSelf(ostream& os, vtkIndent indent)
@@ -494,7 +567,8 @@ void vtkExtractViewDependentMesh::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "HighlightRefinement: " << this->HighlightRefinement << "\n";
   os << indent << "HighlightFactor: " << this->HighlightFactor << "\n";
   os << indent << "RefinementMode: "
-     << (this->RefinementMode == TRIANGLE_BUDGET ? "TRIANGLE_BUDGET" : "FIXED_ACCURACY") << "\n";
+     << timecritical::RefinementModeName(timecritical::ClampRefinementMode(this->RefinementMode))
+     << "\n";
   os << indent << "TriangleBudget: " << this->TriangleBudget << "\n";
   os << indent << "GenerateLocalLevels: " << this->GenerateLocalLevels << "\n";
   os << indent << "NumberOfDisplayVertices: " << this->NumberOfDisplayVertices << "\n";

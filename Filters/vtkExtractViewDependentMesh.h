@@ -17,9 +17,15 @@
  * silhouettes and by HighlightFactor near specular highlights of the light at
  * LightDirection, and back-facing regions stay coarse. Regions outside the
  * four side planes of the view frustum stay coarse (the camera's clipping
- * range is not used). With SetRefinementModeToTriangleBudget() the front is
- * refined where the projected error is largest until TriangleBudget triangles,
- * never below PixelThreshold (a floor: set it to 0 to spend the whole budget).
+ * range is not used). With SetRefinementModeToBudget() the front is refined
+ * where the projected error is largest until TriangleBudget triangles, never
+ * below PixelThreshold (a floor: set it to 0 to spend the whole budget).
+ *
+ * The settings follow timecritical::RefinementSettings (RefinementSettings.h),
+ * as in vtkMultiresolutionPolyDataMapper and vtkTimeCriticalRenderer: the modes
+ * are numbered BUDGET = 0, FIXED_ACCURACY = 1; a number out of range (NaN
+ * included) is an error and leaves the setting as it was; a mode out of range
+ * is clamped.
  *
  * Every front is a fold-free triangulation of the input's topology: a closed
  * manifold input gives a closed manifold output with the same Euler
@@ -44,6 +50,8 @@
 #include <memory> // for std::unique_ptr
 
 class vtkCamera;
+class vtkIdList;
+class vtkPolyData;
 
 class TIMECRITICALFILTERS_EXPORT vtkExtractViewDependentMesh : public vtkPolyDataAlgorithm
 {
@@ -79,7 +87,8 @@ public:
   ///@}
 
   ///@{
-  /// Screen-space error threshold tau in pixels, >= 0 (0: full detail in view). Default 1.
+  /// Screen-space error threshold tau in pixels, finite and >= 0 (0: full detail in view).
+  /// Default 1.
   void SetPixelThreshold(double tau);
   vtkGetMacro(PixelThreshold, double);
   ///@}
@@ -109,7 +118,7 @@ public:
   ///@}
 
   ///@{
-  /// Near silhouettes, multiply the threshold by SilhouetteFactor, in [0.01, 1]. Default on, 0.25
+  /// Near silhouettes, multiply the threshold by SilhouetteFactor, in (0, 1]. Default on, 0.25
   /// (as vtkMultiresolutionPolyDataMapper and vtkTimeCriticalRenderer).
   vtkSetMacro(SilhouetteRefinement, bool);
   vtkGetMacro(SilhouetteRefinement, bool);
@@ -119,7 +128,7 @@ public:
   ///@}
 
   ///@{
-  /// Near highlights, multiply the threshold by HighlightFactor, in [0.01, 1]. Default on, 0.5
+  /// Near highlights, multiply the threshold by HighlightFactor, in (0, 1]. Default on, 0.5
   /// (as vtkMultiresolutionPolyDataMapper and vtkTimeCriticalRenderer).
   vtkSetMacro(HighlightRefinement, bool);
   vtkGetMacro(HighlightRefinement, bool);
@@ -128,23 +137,37 @@ public:
   vtkGetMacro(HighlightFactor, double);
   ///@}
 
+  /// The numbering of timecritical::RefinementMode, as in the mapper and the renderer.
   enum RefinementModes
   {
-    FIXED_ACCURACY = 0, ///< split while the projected error exceeds PixelThreshold
-    TRIANGLE_BUDGET = 1 ///< refine where the error is largest until TriangleBudget triangles
+    BUDGET = 0,         ///< refine where the error is largest until TriangleBudget triangles
+    FIXED_ACCURACY = 1, ///< split while the projected error exceeds PixelThreshold
+    TRIANGLE_BUDGET = BUDGET ///< the budget mode's former name, kept for old scripts
   };
 
   ///@{
-  /// How the front is chosen. Default FIXED_ACCURACY.
-  vtkSetClampMacro(RefinementMode, int, FIXED_ACCURACY, TRIANGLE_BUDGET);
+  /// How the front is chosen, clamped to [BUDGET, FIXED_ACCURACY]. Default FIXED_ACCURACY.
+  vtkSetClampMacro(RefinementMode, int, BUDGET, FIXED_ACCURACY);
   vtkGetMacro(RefinementMode, int);
+  void SetRefinementModeToBudget() { this->SetRefinementMode(BUDGET); }
   void SetRefinementModeToFixedAccuracy() { this->SetRefinementMode(FIXED_ACCURACY); }
-  void SetRefinementModeToTriangleBudget() { this->SetRefinementMode(TRIANGLE_BUDGET); }
+  /// The budget mode's former name, kept for old scripts.
+  void SetRefinementModeToTriangleBudget() { this->SetRefinementMode(BUDGET); }
   ///@}
 
+  /**
+   * The mode in the numbering this filter had before it took the common one
+   * (0 = fixed accuracy, 1 = triangle budget): what ParaView state files and
+   * scripts written then hold in the filter's RefinementMode property. Sets
+   * RefinementMode to the same mode in the common numbering; other values are
+   * an error and ignored.
+   */
+  void SetLegacyRefinementMode(int legacyMode);
+
   ///@{
-  /// Triangles of the front in TRIANGLE_BUDGET mode (at least the coarsest mesh). Default 10000.
-  vtkSetClampMacro(TriangleBudget, vtkIdType, 0, VTK_INT_MAX);
+  /// Triangles of the front in BUDGET mode (at least the coarsest mesh), in
+  /// [0, 2147483647]. Default 10000.
+  void SetTriangleBudget(vtkIdType budget);
   vtkGetMacro(TriangleBudget, vtkIdType);
   ///@}
 
@@ -207,6 +230,17 @@ private:
 
   struct Internals;
   std::unique_ptr<Internals> Internal;
+
+  // The steps of RequestData().
+  void ResetStatistics();
+  /// 1: ready to refine, 0: error (reported), -1: nothing to refine (empty output).
+  int PrepareRefinement(vtkPolyData* input);
+  bool InitializeRefinement(vtkPolyData* input);
+  void UpdateFront();
+  vtkIdType CopyDisplayVertices(vtkPolyData* input, vtkPolyData* output, vtkIdList* pointIds);
+  bool CopyDisplayTriangles(vtkPolyData* input, vtkPolyData* output);
+  void AddLocalLevels(vtkPolyData* output, vtkIdList* pointIds);
+  static void PassFieldData(vtkPolyData* input, vtkPolyData* output);
 };
 
 #endif

@@ -4,6 +4,7 @@
 #include "vtkMultiresolutionPolyDataMapper.h"
 
 #include "RefinementSettingChecks.h"
+#include "RefinementSettings.h"
 
 #include "ActiveSetPolicy.h"
 #include "CostModelCalibrator.h"
@@ -259,6 +260,10 @@ struct vtkTimeCriticalRenderer::Internals
     this->Calibrator.SetLowerBounds(lower);
   }
 };
+
+static_assert(vtkTimeCriticalRenderer::BUDGET == timecritical::RefinementModeBudget &&
+    vtkTimeCriticalRenderer::FIXED_ACCURACY == timecritical::RefinementModeFixedAccuracy,
+  "one numbering of the refinement modes (RefinementSettings.h)");
 
 vtkStandardNewMacro(vtkTimeCriticalRenderer);
 
@@ -1440,7 +1445,8 @@ void vtkTimeCriticalRenderer::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "NewObjectCostFactor: " << this->NewObjectCostFactor << "\n";
   os << indent << "ViewDependentRefinement: " << this->ViewDependentRefinement << "\n";
   os << indent << "RefinementMode: "
-     << (this->RefinementMode == FIXED_ACCURACY ? "FIXED_ACCURACY" : "BUDGET") << "\n";
+     << timecritical::RefinementModeName(timecritical::ClampRefinementMode(this->RefinementMode))
+     << "\n";
   os << indent << "PixelThreshold: " << this->PixelThreshold << "\n";
   os << indent << "BackFaceSimplification: " << this->BackFaceSimplification << "\n";
   os << indent << "SilhouetteRefinement: " << this->SilhouetteRefinement << " (factor "

@@ -335,7 +335,13 @@ public:
   ///@}
 
   ///@{
-  /// View-dependent refinement settings, applied to every multiresolution mapper drawn.
+  /**
+   * View-dependent refinement settings, applied to every multiresolution
+   * mapper drawn. They follow timecritical::RefinementSettings
+   * (RefinementSettings.h), as in the mapper and vtkExtractViewDependentMesh:
+   * one numbering of the modes, a number out of range (NaN included) is an
+   * error and leaves the setting as it was, a mode out of range is clamped.
+   */
   enum RefinementModes
   {
     BUDGET = 0,        ///< front refined to the policy's triangle budget

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkPVTimeCriticalRenderView.h"
 
+#include "TimeCriticalStatisticsText.h"
+
 #include "vtkActor.h"
 #include "vtkActorCollection.h"
 #include "vtkCollectionIterator.h"
@@ -24,9 +26,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
-#include <iomanip>
 #include <limits>
-#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -182,15 +182,6 @@ bool CalibrationIsSafeHere()
   }
 }
 
-std::string WithThousands(vtkIdType value)
-{
-  std::string digits = std::to_string(value);
-  for (int i = static_cast<int>(digits.size()) - 3; i > 0; i -= 3)
-  {
-    digits.insert(static_cast<size_t>(i), ",");
-  }
-  return digits;
-}
 } // namespace
 
 //------------------------------------------------------------------------------
@@ -394,6 +385,13 @@ void vtkPVTimeCriticalRenderView::GatherRankStatistics()
   {
     std::copy(mine, mine + RankStatisticsFields, this->RankStatistics.begin());
   }
+  double slowest = 0.0;
+  for (int rank = 0; rank < ranks; ++rank)
+  {
+    const double rankTime = this->GetRankMeasuredFrameTime(rank);
+    slowest = std::isfinite(rankTime) ? std::max(slowest, rankTime) : slowest;
+  }
+  TimeCriticalStatisticsText::SetRankSummary(renderer, ranks, slowest);
 }
 
 int vtkPVTimeCriticalRenderView::GetNumberOfRanks()
@@ -518,67 +516,7 @@ void vtkPVTimeCriticalRenderView::FetchServerStatistics()
 
 std::string vtkPVTimeCriticalRenderView::GetLocalStatisticsText()
 {
-  vtkTimeCriticalRenderer* renderer = this->GetTimeCriticalRenderer();
-  if (!renderer)
-  {
-    return "Time-critical rendering unavailable (see the error messages)";
-  }
-  vtkIdType total = 0;
-  const vtkIdType objects = renderer->GetNumberOfObjects();
-  for (vtkIdType i = 0; i < objects; ++i)
-  {
-    auto* mapper =
-      vtkMultiresolutionPolyDataMapper::SafeDownCast(renderer->GetObjectActor(i)->GetMapper());
-    if (mapper)
-    {
-      total += mapper->GetObjectNumberOfTriangles(renderer->GetObjectIndex(i));
-    }
-  }
-  const vtkIdType drawn = renderer->GetObjectTrianglesDrawn();
-  std::ostringstream text;
-  text << std::fixed << std::setprecision(1);
-  text << "Last frame: ";
-  if (renderer->GetLastRenderWasStill())
-  {
-    text << "still, full resolution\n";
-  }
-  else
-  {
-    text << "target " << renderer->GetLastTargetFrameTime() * 1000.0 << " ms, predicted "
-         << renderer->GetPredictedFrameTime() * 1000.0 << " ms\n";
-  }
-  const double measured = renderer->GetMeasuredFrameTime();
-  text << "Measured: ";
-  if (std::isfinite(measured))
-  {
-    text << measured * 1000.0 << " ms\n";
-  }
-  else
-  {
-    text << "-\n";
-  }
-  text << "Triangles: " << WithThousands(drawn) << " of " << WithThousands(total);
-  if (total > 0)
-  {
-    text << " (" << 100.0 * static_cast<double>(drawn) / static_cast<double>(total) << "%)";
-  }
-  text << "\nObjects: " << WithThousands(objects - renderer->GetNumberOfCulledObjects())
-       << " drawn, " << WithThousands(renderer->GetNumberOfCulledObjects()) << " culled\n";
-  text << std::setprecision(2) << "Optimizer: " << renderer->GetOptimizationTime() * 1000.0
-       << " ms, " << renderer->GetOptimizationIterations() << " iterations";
-  const int ranks = this->GetNumberOfRanks();
-  if (ranks > 1)
-  {
-    double slowest = 0.0;
-    for (int rank = 0; rank < ranks; ++rank)
-    {
-      const double rankTime = this->GetRankMeasuredFrameTime(rank);
-      slowest = std::isfinite(rankTime) ? std::max(slowest, rankTime) : slowest;
-    }
-    text << std::setprecision(1) << "\nRanks: " << ranks << ", slowest measured "
-         << slowest * 1000.0 << " ms";
-  }
-  return text.str();
+  return TimeCriticalStatisticsText::Format(this->GetTimeCriticalRenderer());
 }
 
 //------------------------------------------------------------------------------

@@ -2,8 +2,10 @@
 #include "vtkPVTimeCriticalStatisticsInformation.h"
 
 #include "vtkClientServerStream.h"
+#include "TimeCriticalStatisticsText.h"
 #include "vtkObjectFactory.h"
-#include "vtkPVTimeCriticalRenderView.h"
+#include "vtkPVRenderView.h"
+#include "vtkTimeCriticalRenderer.h"
 
 vtkStandardNewMacro(vtkPVTimeCriticalStatisticsInformation);
 
@@ -16,8 +18,12 @@ vtkPVTimeCriticalStatisticsInformation::~vtkPVTimeCriticalStatisticsInformation(
 
 void vtkPVTimeCriticalStatisticsInformation::CopyFromObject(vtkObject* object)
 {
-  auto* view = vtkPVTimeCriticalRenderView::SafeDownCast(object);
-  this->Text = view ? view->GetLocalStatisticsText() : std::string();
+  // The view's own text (vtkPVTimeCriticalRenderView::GetLocalStatisticsText()),
+  // read from its renderer so that this class needs no view.
+  auto* view = vtkPVRenderView::SafeDownCast(object);
+  this->Text = view && view->IsA("vtkPVTimeCriticalRenderView")
+    ? TimeCriticalStatisticsText::Format(vtkTimeCriticalRenderer::SafeDownCast(view->GetRenderer()))
+    : std::string();
 }
 
 void vtkPVTimeCriticalStatisticsInformation::AddInformation(vtkPVInformation* other)
