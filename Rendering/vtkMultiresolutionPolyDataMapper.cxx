@@ -255,7 +255,8 @@ void vtkMultiresolutionPolyDataMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "NumberOfDrawCalls: " << this->NumberOfDrawCalls << "\n";
   os << indent << "ViewDependentRefinement: " << this->ViewDependentRefinement << "\n";
   os << indent << "RefinementMode: "
-     << (this->RefinementMode == FIXED_ACCURACY ? "FIXED_ACCURACY" : "BUDGET") << "\n";
+     << timecritical::RefinementModeName(timecritical::ClampRefinementMode(this->RefinementMode))
+     << "\n";
   os << indent << "PixelThreshold: " << this->PixelThreshold << "\n";
   os << indent << "BackFaceSimplification: " << this->BackFaceSimplification << "\n";
   os << indent << "SilhouetteRefinement: " << this->SilhouetteRefinement

@@ -5,12 +5,10 @@
 #include "vtkMultiresolutionPolyDataMapperInternals.h"
 
 #include "RefinementSettingChecks.h"
+#include "RefinementViewFromCamera.h"
 
 #include "vtkActor.h"
 #include "vtkCamera.h"
-#include "vtkLight.h"
-#include "vtkLightCollection.h"
-#include "vtkMath.h"
 #include "vtkMatrix3x3.h"
 #include "vtkMatrix4x4.h"
 #include "vtkOpenGLCamera.h"
@@ -42,8 +40,8 @@ void vtkMultiresolutionPolyDataMapper::SetViewDependentRefinement(bool on)
 
 void vtkMultiresolutionPolyDataMapper::SetRefinementMode(int mode)
 {
-  SetRenderState(this->RefinementMode, std::min(std::max(mode, static_cast<int>(BUDGET)),
-    static_cast<int>(FIXED_ACCURACY)), this->Internal->ResolutionVersion);
+  SetRenderState(this->RefinementMode, static_cast<int>(timecritical::ClampRefinementMode(mode)),
+    this->Internal->ResolutionVersion);
 }
 
 void vtkMultiresolutionPolyDataMapper::SetBackFaceSimplification(bool on)
@@ -94,131 +92,51 @@ void vtkMultiresolutionPolyDataMapper::SetHighlightFactor(double factor)
 }
 
 //------------------------------------------------------------------------------
-namespace
-{
-/// World points and directions in the leaves' own coordinates (all share the actor's matrix).
-struct ToObject
-{
-  explicit ToObject(vtkActor* act) { vtkMatrix4x4::Invert(act->GetMatrix()->GetData(), this->M); }
-  void Point(const double w[3], double o[3]) const
-  {
-    for (int r = 0; r < 3; ++r)
-    {
-      o[r] = this->M[4 * r] * w[0] + this->M[4 * r + 1] * w[1] + this->M[4 * r + 2] * w[2] +
-        this->M[4 * r + 3];
-    }
-  }
-  void Direction(const double w[3], double o[3]) const
-  {
-    for (int r = 0; r < 3; ++r)
-    {
-      o[r] = this->M[4 * r] * w[0] + this->M[4 * r + 1] * w[1] + this->M[4 * r + 2] * w[2];
-    }
-    vtkMath::Normalize(o);
-  }
-  double M[16];
-};
+static_assert(vtkMultiresolutionPolyDataMapper::BUDGET == timecritical::RefinementModeBudget &&
+    vtkMultiresolutionPolyDataMapper::FIXED_ACCURACY == timecritical::RefinementModeFixedAccuracy,
+  "one numbering of the refinement modes (RefinementSettings.h)");
 
-/// Eye, direction, projection and viewport of the active camera, in object coordinates.
-void SetCameraView(
-  vtkRenderer* ren, vtkActor* act, const ToObject& toObject, timecritical::RefinementView& view)
+timecritical::RefinementSettings vtkMultiresolutionPolyDataMapper::Internals::GetSettings(
+  const vtkMultiresolutionPolyDataMapper& mapper)
 {
-  vtkCamera* camera = ren->GetActiveCamera();
-  toObject.Point(camera->GetPosition(), view.Eye);
-  toObject.Direction(camera->GetDirectionOfProjection(), view.Direction);
-  view.Parallel = camera->GetParallelProjection() != 0;
-  int width = 0, height = 0;
-  ren->GetTiledSize(&width, &height);
-  view.ViewportHeight = std::max(height, 1);
-  view.ViewAngle = camera->GetViewAngle();
-  if (camera->GetUseHorizontalViewAngle() && width > 0 && height > 0)
-  {
-    // The projected error needs the vertical angle; a horizontal one spans the width.
-    const double half = 0.5 * vtkMath::RadiansFromDegrees(view.ViewAngle);
-    view.ViewAngle = 2.0 *
-      vtkMath::DegreesFromRadians(std::atan(std::tan(half) * static_cast<double>(height) / width));
-  }
-  // World lengths to object lengths: the actor's uniform scale (cube root of
-  // the determinant for the rare non-uniform case).
-  const double scale = std::cbrt(std::abs(act->GetMatrix()->Determinant()));
-  view.ParallelScale = camera->GetParallelScale() / (scale > 0.0 ? scale : 1.0);
-  // Nothing nearer than the near plane is drawn: a node around the eye is
-  // projected from there instead of with an unbounded error.
-  view.NearDistance = camera->GetClippingRange()[0] / (scale > 0.0 ? scale : 1.0);
+  timecritical::RefinementSettings settings;
+  settings.Mode = timecritical::ClampRefinementMode(mapper.RefinementMode);
+  settings.PixelThreshold = mapper.PixelThreshold;
+  settings.BackFaceSimplification = mapper.BackFaceSimplification;
+  settings.SilhouetteRefinement = mapper.SilhouetteRefinement;
+  settings.SilhouetteFactor = mapper.SilhouetteFactor;
+  settings.HighlightRefinement = mapper.HighlightRefinement;
+  settings.HighlightFactor = mapper.HighlightFactor;
+  settings.TimeLimit = mapper.RefinementTimeLimit;
+  return settings;
 }
 
-/// The frustum planes of the draw, in object coordinates.
-void SetFrustumPlanes(vtkRenderer* ren, vtkActor* act, timecritical::RefinementView& view)
+timecritical::RefinementView vtkMultiresolutionPolyDataMapper::Internals::ComputeView(
+  vtkRenderer* ren, vtkActor* act)
 {
-  // From the world-to-clip matrix the draw uses (cached by the camera until
-  // it changes; vtkCamera::GetFrustumPlanes() would rebuild a transform
-  // concatenation, allocating, at every call). vtkOpenGLCamera keeps it
-  // transposed: row r of the clip matrix is column r of wcdc.
+  // The view of the draw in the leaves' own coordinates (all share the
+  // actor's matrix). The planes come from the world-to-clip matrix the draw
+  // uses, cached by the camera until it changes (vtkCamera::GetFrustumPlanes()
+  // would allocate at every call).
   vtkCamera* camera = ren->GetActiveCamera();
-  double planes[24];
+  timecritical::CameraViewOptions options;
+  timecritical::SetViewportFromRenderer(ren, options);
+  options.ModelMatrix = act->GetMatrix()->GetData();
   if (auto* glCamera = vtkOpenGLCamera::SafeDownCast(camera))
   {
     vtkMatrix4x4 *wcvc = nullptr, *vcdc = nullptr, *wcdc = nullptr;
     vtkMatrix3x3* normals = nullptr;
     glCamera->GetKeyMatrices(ren, wcvc, normals, vcdc, wcdc);
-    // Left, right, bottom, top, near, far: w +- x, w +- y, w +- z >= 0 inside.
-    for (int i = 0; i < 6; ++i)
-    {
-      const int axis = i / 2;
-      const double sign = i % 2 == 0 ? 1.0 : -1.0;
-      for (int c = 0; c < 4; ++c)
-      {
-        planes[4 * i + c] = wcdc->GetElement(c, 3) + sign * wcdc->GetElement(c, axis);
-      }
-    }
+    options.OpenGLWorldToClip = wcdc->GetData();
   }
-  else
+  double toLight[3];
+  if (timecritical::GetFirstLightDirection(ren, toLight))
   {
-    camera->GetFrustumPlanes(ren->GetTiledAspectRatio(), planes);
+    options.LightDirection = toLight;
   }
-  const double* model = act->GetMatrix()->GetData();
-  view.NumberOfFrustumPlanes = 6;
-  for (int i = 0; i < 6; ++i)
-  {
-    // A plane p (world) is p M in object coordinates (the refinement
-    // normalizes it).
-    double* o = view.FrustumPlanes[i];
-    for (int c = 0; c < 4; ++c)
-    {
-      o[c] = planes[4 * i] * model[c] + planes[4 * i + 1] * model[4 + c] +
-        planes[4 * i + 2] * model[8 + c] + planes[4 * i + 3] * model[12 + c];
-    }
-  }
+  return timecritical::ComputeRefinementView(camera, options);
 }
 
-/// Towards the first switched-on light; a headlight when there is none.
-void SetLightDirection(vtkRenderer* ren, const ToObject& toObject, timecritical::RefinementView& view)
-{
-  double toLight[3] = { -view.Direction[0], -view.Direction[1], -view.Direction[2] };
-  vtkLightCollection* lights = ren->GetLights();
-  vtkCollectionSimpleIterator it;
-  lights->InitTraversal(it);
-  while (vtkLight* light = lights->GetNextLight(it))
-  {
-    if (light->GetSwitch())
-    {
-      double position[3], focal[3], world[3];
-      light->GetTransformedPosition(position);
-      light->GetTransformedFocalPoint(focal);
-      for (int k = 0; k < 3; ++k)
-      {
-        world[k] = position[k] - focal[k];
-      }
-      if (vtkMath::Norm(world) > 0.0)
-      {
-        toObject.Direction(world, toLight);
-      }
-      break;
-    }
-  }
-  std::copy(toLight, toLight + 3, view.LightDirection);
-}
-}
 
 void vtkMultiresolutionPolyDataMapper::RefineObjects(vtkRenderer* ren, vtkActor* act)
 {
@@ -236,11 +154,8 @@ void vtkMultiresolutionPolyDataMapper::RefineObjects(vtkRenderer* ren, vtkActor*
     return;
   }
 
-  const ToObject toObject(act);
-  timecritical::RefinementView view;
-  SetCameraView(ren, act, toObject, view);
-  SetFrustumPlanes(ren, act, view);
-  SetLightDirection(ren, toObject, view);
+  const timecritical::RefinementView view = Internals::ComputeView(ren, act);
+  const timecritical::RefinementSettings settings = Internals::GetSettings(*this);
 
   // The time limit is shared by the fronts drawn this render.
   int fronts = 0;
@@ -257,7 +172,7 @@ void vtkMultiresolutionPolyDataMapper::RefineObjects(vtkRenderer* ren, vtkActor*
     {
       continue; // culled objects keep their front for when they come back
     }
-    if (in.RefineFront(object, view, *this, limit))
+    if (in.RefineFront(object, view, settings, limit))
     {
       ++object.FrontVersion; // its slot is rewritten, the others' are not
       changed = true;
@@ -271,17 +186,12 @@ void vtkMultiresolutionPolyDataMapper::RefineObjects(vtkRenderer* ren, vtkActor*
 }
 
 bool vtkMultiresolutionPolyDataMapper::Internals::RefineFront(Object& object,
-  const timecritical::RefinementView& view, const vtkMultiresolutionPolyDataMapper& settings,
+  const timecritical::RefinementView& view, const timecritical::RefinementSettings& settings,
   double limit)
 {
   timecritical::ViewDependentRefinement& front = *object.Refinement;
   front.SetView(view);
-  front.SetPixelThreshold(settings.PixelThreshold);
-  front.SetBackFaceSimplification(settings.BackFaceSimplification);
-  front.SetSilhouetteRefinement(settings.SilhouetteRefinement);
-  front.SetSilhouetteFactor(settings.SilhouetteFactor);
-  front.SetHighlightRefinement(settings.HighlightRefinement);
-  front.SetHighlightFactor(settings.HighlightFactor);
+  timecritical::ApplyRefinementSettings(settings, front);
   double budget = std::min<double>(
     std::lround(object.Resolution * object.NumberOfTriangles), object.NumberOfTriangles);
   bool limited = false;
@@ -297,7 +207,7 @@ bool vtkMultiresolutionPolyDataMapper::Internals::RefineFront(Object& object,
     limited = budget != wanted;
   }
   const auto start = std::chrono::steady_clock::now();
-  const timecritical::RefinementStatistics& statistics = settings.RefinementMode == FIXED_ACCURACY
+  const timecritical::RefinementStatistics& statistics = settings.Mode == timecritical::RefinementMode::FixedAccuracy
     ? front.UpdateFixedAccuracy()
     // The step keeps the work near the limit; the core's own deadline
     // (twice the limit, at least 2 ms so that every update makes progress)

@@ -14,6 +14,7 @@
 #include "vtkMultiresolutionPolyDataMapper.h"
 
 #include "IndexSlotAllocator.h"
+#include "RefinementSettings.h"
 #include "TOMTraversal.h"
 #include "ViewDependentRefinement.h"
 
@@ -298,7 +299,11 @@ struct vtkMultiresolutionPolyDataMapper::Internals
   // View-dependent fronts (Fronts.cxx): refines one front for the view;
   // returns whether it moved.
   static bool RefineFront(Object& object, const timecritical::RefinementView& view,
-    const vtkMultiresolutionPolyDataMapper& settings, double limit);
+    const timecritical::RefinementSettings& settings, double limit);
+  // The mapper's refinement settings in the shared settings type.
+  static timecritical::RefinementSettings GetSettings(const vtkMultiresolutionPolyDataMapper& mapper);
+  // The renderer's camera, viewport, frustum and first light in the leaves' coordinates.
+  static timecritical::RefinementView ComputeView(vtkRenderer* ren, vtkActor* act);
 
   // Vertex buffers (VertexBuffers.cxx): appends every leaf's array of an
   // attribute, read by `get` (with `name`), to the vertex buffer group.
