@@ -37,7 +37,7 @@
 #include "MeshConversion.h"
 #include "PlotScript.h"
 #include "PolicySelection.h"
-#include "TestMeshIO.h"
+#include "MeshIO.h"
 #include "W1CameraPath.h"
 #include "W1Scene.h"
 #include "W1SceneSpecification.h"

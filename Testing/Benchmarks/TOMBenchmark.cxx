@@ -40,7 +40,7 @@
 #include "TOMMesh.h"
 #include "TOMTraversal.h"
 #include "TOMValidator.h"
-#include "TestMeshIO.h"
+#include "MeshIO.h"
 
 #include <meshoptimizer.h>
 

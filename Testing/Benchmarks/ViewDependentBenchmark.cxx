@@ -41,7 +41,7 @@
 #include "PlotScript.h"
 #include "PolicyGoal.h"
 #include "PolicySelection.h"
-#include "TestMeshIO.h"
+#include "MeshIO.h"
 #include "W1CameraPath.h"
 #include "W1Scene.h"
 #include "W1SceneSpecification.h"

@@ -24,7 +24,7 @@
 #include "LoopSubdivision.h"
 #include "MergeTreeAttributes.h"
 #include "TOMBuilder.h"
-#include "TestMeshIO.h"
+#include "MeshIO.h"
 #include "ViewDependentRefinement.h"
 
 #include <algorithm>

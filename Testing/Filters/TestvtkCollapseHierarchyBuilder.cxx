@@ -5,7 +5,7 @@
 // each test run on both builders.
 #include "FilterTestSupport.h"
 #include "TOMBuilder.h"
-#include "TestMeshIO.h"
+#include "MeshIO.h"
 #include "vtkCollapseHierarchyBuilder.h"
 #include "vtkMergeTreeBuilder.h"
 #include "vtkTOMBuilder.h"

@@ -270,7 +270,7 @@ TEST(vtkMergeTreeBuilder, SettingsRejectNaNAndClamp)
   EXPECT_GT(builder->GetMTime(), before);
   builder->SetFeatureAngle(-5.0);
   EXPECT_EQ(builder->GetFeatureAngle(), 0.0);
-  // The feature-edge settings (forwarding: TestTOMFilters' FeatureEdgeSettingsReachTheCore).
+  // The feature-edge settings (forwarding: TestvtkCollapseHierarchyBuilder's FeatureEdgeSettingsReachTheCore).
   EXPECT_FALSE(builder->GetLockFeatureEdges());
   EXPECT_EQ(builder->GetFeatureWeight(), 10.0);
   builder->SetFeatureWeight(std::numeric_limits<double>::quiet_NaN());

@@ -9,7 +9,7 @@
 // writes <output>/fuzz_tom, <output>/fuzz_builder and <output>/fuzz_refine.
 #include "FuzzFormat.h"
 #include "TOMBuilder.h"
-#include "TestMeshIO.h"
+#include "MeshIO.h"
 
 #include <algorithm>
 #include <cerrno>

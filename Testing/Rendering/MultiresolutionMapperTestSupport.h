@@ -5,7 +5,7 @@
 // triangles, nested and grid inputs, coloring set-ups, image comparisons and
 // area selection.
 //
-// Image thresholds are those of TestTOMImageBaselines: a channel value
+// Image thresholds are those of TestvtkTOMPolyDataMapper: a channel value
 // differing by more than 0.05 fails; at most 0.1% may fail, RMS below 0.005.
 #ifndef MultiresolutionMapperTestSupport_h
 #define MultiresolutionMapperTestSupport_h

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Helpers shared by the GoogleTest tests of the VTK filters (TestvtkTOMBuilder,
-// TestvtkCollapseHierarchyBuilder, TestMergeTreeFilters and the others): the
+// TestvtkCollapseHierarchyBuilder, TestvtkMergeTreeBuilder and the others): the
 // two builders take the same input checks and carry data the same way, so
 // their tests use one message log, one set of input meshes and one check of
 // how data travels.

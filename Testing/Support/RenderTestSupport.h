@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Helpers shared by the GoogleTest tests that render (TestvtkMultiresolutionPolyDataMapper,
-// TestViewDependentRendering, TestvtkTimeCriticalRenderer, TestvtkTOMPolyDataMapper):
+// TestvtkMultiresolutionPolyDataMapperFronts, TestvtkTimeCriticalRenderer, TestvtkTOMPolyDataMapper):
 // the X server workaround, the bumpy test surface, event counting and reading
 // back the window, so that the tests render and compare the same way.
 #ifndef timecritical_RenderTestSupport_h

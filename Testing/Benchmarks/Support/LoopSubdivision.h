@@ -8,7 +8,7 @@
  * vtkLoopSubdivisionFilter in all of them, so that "igea after one Loop
  * subdivision" is one mesh wherever a benchmark names it.
  */
-#include "TestMeshIO.h"
+#include "MeshIO.h"
 
 #include <vtkSmartPointer.h>
 

@@ -6,7 +6,7 @@
  * The benchmarks' meshes between the test support's TriangleMesh (what the
  * VTK-free cores take) and vtkPolyData (what the filters and mappers take).
  */
-#include "TestMeshIO.h"
+#include "MeshIO.h"
 
 #include <vtkSmartPointer.h>
 

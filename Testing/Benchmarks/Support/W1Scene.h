@@ -8,7 +8,7 @@
  * W2's mixed scene (ViewDependentBenchmark --mixed), the interactive
  * benchmark and scripts/make_w1_scene.py all draw the same herd.
  */
-#include "TestMeshIO.h"
+#include "MeshIO.h"
 
 #include <vtkSmartPointer.h>
 #include <vtkType.h>

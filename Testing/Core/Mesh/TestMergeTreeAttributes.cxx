@@ -3,7 +3,7 @@
 #include "TOMBuilder.h"
 #include "TOMMesh.h"
 #include "TOMTestMeshes.h"
-#include "TestMeshIO.h"
+#include "MeshIO.h"
 
 #include <gtest/gtest.h>
 

@@ -11,7 +11,7 @@
 #include "TOMTraversal.h"
 #include "TOMValidator.h"
 
-#include "TestMeshIO.h"
+#include "MeshIO.h"
 
 #include <gtest/gtest.h>
 

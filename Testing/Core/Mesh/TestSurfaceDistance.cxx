@@ -5,7 +5,7 @@
 // The locator they query is tested in TestSurfaceLocator.cxx.
 #include "SurfaceDistance.h"
 
-#include "TestMeshIO.h"
+#include "MeshIO.h"
 
 #include <gtest/gtest.h>
 

@@ -3,7 +3,7 @@
 // each Voronoi region of a triangle, and the tree's answers against brute force.
 #include "SurfaceDistance.h"
 
-#include "TestMeshIO.h"
+#include "MeshIO.h"
 
 #include <gtest/gtest.h>
 

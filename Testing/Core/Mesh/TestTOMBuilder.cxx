@@ -11,7 +11,7 @@
 #include "TOMValidator.h"
 
 #include "AllocationCounter.h"
-#include "TestMeshIO.h"
+#include "MeshIO.h"
 
 #include <gtest/gtest.h>
 

@@ -8,7 +8,7 @@
 #include "TOMMesh.h"
 #include "TOMTestMeshes.h"
 #include "TOMTraversal.h"
-#include "TestMeshIO.h"
+#include "MeshIO.h"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#ifndef timecritical_TestMeshIO_h
-#define timecritical_TestMeshIO_h
+#ifndef timecritical_MeshIO_h
+#define timecritical_MeshIO_h
 
 /**
  * VTK-free triangle mesh loading, welding, checking and generation for the
@@ -17,7 +17,7 @@
  * properties), so every loaded coordinate is a float: an OBJ coordinate is
  * the file's decimal rounded to float (docs/testing.md says how far that
  * moves the shared meshes), igea's float coordinates are unchanged. A coordinate beyond float range is
- * an error. Testing/Core/Mesh/TestMeshIOLoaders.cxx pins the loaded meshes
+ * an error. Testing/Support/TestMeshIOLoaders.cxx pins the loaded meshes
  * (counts, bounding boxes, coordinate and triangle hashes) and these facts.
  *
  * By hand, because OpenMesh lacks it:

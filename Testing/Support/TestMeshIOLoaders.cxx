@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// The loaders of Testing/Support/TestMeshIO.h give the tests and benchmarks
+// The loaders of Testing/Support/MeshIO.h give the tests and benchmarks
 // their input meshes, so a change in what they return changes every figure
 // measured on the shared meshes. These tests pin that output:
 //
@@ -17,11 +17,11 @@
 //   mesh rounded to float, bit for bit, signed zeros included; coordinates
 //   beyond float range are an error, not an infinity.
 // * Why the pieces that are not OpenMesh's are not: its PLY reader skips
-//   igea's `tristrips` (decoded by hand in TestMeshIO.cxx), its halfedge
+//   igea's `tristrips` (decoded by hand in MeshIO.cxx), its halfedge
 //   meshes split the cow's pinch vertex (hence an importer into plain
 //   arrays), and its PLY writer writes float properties (SavePLY writes
 //   double). The tests fail if OpenMesh changes on any of these.
-#include "TestMeshIO.h"
+#include "MeshIO.h"
 
 #include <gtest/gtest.h>
 
@@ -473,7 +473,7 @@ using OpenMeshTriMesh = OpenMesh::TriMesh_ArrayKernelT<OpenMesh::DefaultTraitsDo
 
 TEST(OpenMeshIO, SkipsIgeasTriangleStrips)
 {
-  // Why TestMeshIO.cxx decodes `tristrips` by hand.
+  // Why MeshIO.cxx decodes `tristrips` by hand.
   const SharedMesh shared = FindSharedMesh("igea.ply");
   if (!shared.Available)
   {
