@@ -276,7 +276,7 @@ private:
   double Evaluate(const Node& node, Sleep* sleep = nullptr) const;
   // The steps of Evaluate().
   /// Wholly outside a frustum plane.
-  inline bool Outside(const Node& node) const;
+  inline bool Outside(const Sight& sight) const;
   /// Perspective sight of the node; true when that alone decides `key`.
   inline bool SeePerspective(const Node& node, Sight& sight, Sleep* sleep, double& key) const;
   /// Back-face and silhouette tests; true when every normal faces away.

@@ -32,7 +32,7 @@ bool ViewDependentRefinement::OutOfTime()
   {
     return this->Statistics.Interrupted = true;
   }
-  // The clock is read every 16 calls (a split or merge is ~0.1-1 us).
+  // The clock is read every 16 calls: the overrun is a few operations at most.
   if (this->Deadline > 0.0 && (++this->Checks & 15) == 0 &&
     std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count() >=
       this->Deadline)

@@ -122,12 +122,13 @@ void ViewDependentRefinement::PrepareView()
   this->LastEye[2] = this->EyeZ;
 }
 
-/// Where the eye sees a node from: the unit direction d from the eye to its
-/// centre (the view direction when parallel), the sine and cosine of the
-/// sphere's angular radius beta (0 when parallel), the distance to the centre
-/// and the projected error in pixels.
+/// Where the eye sees a node from: its bounding sphere, the unit direction d
+/// from the eye to its centre (the view direction when parallel), the sine
+/// and cosine of the sphere's angular radius beta (0 when parallel), the
+/// distance to the centre and the projected error in pixels.
 struct ViewDependentRefinement::Sight
 {
+  double Cx, Cy, Cz;
   double Dx, Dy, Dz;
   double SinB = 0.0, CosB = 1.0;
   double Projected;
@@ -147,12 +148,12 @@ struct ViewDependentRefinement::ConeTest
   double Factor = 1.0;
 };
 
-TIMECRITICAL_ALWAYS_INLINE bool ViewDependentRefinement::Outside(const Node& node) const
+TIMECRITICAL_ALWAYS_INLINE bool ViewDependentRefinement::Outside(const Sight& sight) const
 {
   // Wholly outside a plane. Written as two plain loops so that compilers
   // vectorize them.
-  const double cx = node.Center[0], cy = node.Center[1], cz = node.Center[2];
-  const double r = node.Radius;
+  const double cx = sight.Cx, cy = sight.Cy, cz = sight.Cz;
+  const double r = sight.Radius;
   double distance[8];
   for (int i = 0; i < 8; ++i)
   {
@@ -171,8 +172,8 @@ TIMECRITICAL_ALWAYS_INLINE bool ViewDependentRefinement::SeePerspective(
   const Node& node, Sight& sight, Sleep* sleep, double& key) const
 {
   // True when that decides the key (no cone test needed).
-  const double cx = node.Center[0], cy = node.Center[1], cz = node.Center[2];
-  const double r = node.Radius;
+  const double cx = sight.Cx, cy = sight.Cy, cz = sight.Cz;
+  const double r = sight.Radius;
   double dx = cx - this->EyeX;
   double dy = cy - this->EyeY;
   double dz = cz - this->EyeZ;
@@ -323,12 +324,15 @@ TIMECRITICAL_NOINLINE double ViewDependentRefinement::Evaluate(const Node& node,
   {
     *sleep = Sleep{};
   }
-  if (this->BrokenView || (this->PlaneCount > 0 && this->Outside(node)))
+  Sight sight;
+  sight.Cx = node.Center[0];
+  sight.Cy = node.Center[1];
+  sight.Cz = node.Center[2];
+  sight.Radius = node.Radius;
+  if (this->BrokenView || (this->PlaneCount > 0 && this->Outside(sight)))
   {
     return -1.0;
   }
-  Sight sight;
-  sight.Radius = node.Radius;
   if (this->View.Parallel)
   {
     sight.Dx = this->DirX;
