@@ -229,6 +229,8 @@ private:
   double BoundKappa() const;
   double ClosedForm(double* r, double budget);
   bool ProjectedStep(double* r, double slack, double kappa0, double& objective, std::size_t& changes);
+  /// The kappa of ProjectedStep()'s solution (a safeguarded Newton iteration from kappa0).
+  bool ProjectedRoot(double slack, double kappa0, double& solution);
   std::size_t LineStep(double* r, double kappa, double& objective);
   bool Release(double kappa, bool slackTime);
   bool TimeUp();

@@ -328,18 +328,70 @@ bool ActiveSetOptimizer::ProjectedStep(
   double* r, double slack, double kappa0, double& objective, std::size_t& changes)
 {
   // Minimize f over the free variables within their bounds, the working
-  // set's bounds fixed, on sum_F tmax_i r_i = slack. Its solution is
-  // r_i = clamp(kappa g_i, rmin_i, 1) where phi(kappa) = sum_F tmax_i
-  // clamp(kappa g_i) = slack; phi is non-decreasing and piecewise linear, so a
+  // set's bounds fixed, on sum_F tmax_i r_i = slack (ProjectedRoot()); the
+  // step is taken only when it improves f.
+  double solution = 0.0;
+  if (!this->ProjectedRoot(slack, kappa0, solution))
+  {
+    return false;
+  }
+  const std::size_t n = this->N;
+  // Accept only an improvement: f is monotone along the returned points.
+  double delta = 0.0;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    if (this->State[i] == Free)
+    {
+      const double y = Clamp(solution * this->G[i], this->Lo[i], 1.0);
+      delta += ResolutionProblem::Term(this->C[i], this->Alpha, y) -
+        ResolutionProblem::Term(this->C[i], this->Alpha, r[i]);
+    }
+  }
+  this->Work += n;
+  if (!(delta <= 0.0))
+  {
+    return false;
+  }
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    if (this->State[i] == Free)
+    {
+      const double y = solution * this->G[i];
+      if (y <= this->Lo[i])
+      {
+        r[i] = this->Lo[i];
+        this->State[i] = Lower;
+        ++changes;
+      }
+      else if (y >= 1.0)
+      {
+        r[i] = 1.0;
+        this->State[i] = Upper;
+        ++changes;
+      }
+      else
+      {
+        r[i] = y;
+      }
+    }
+  }
+  objective += delta;
+  return true;
+}
+
+bool ActiveSetOptimizer::ProjectedRoot(double slack, double kappa0, double& solution)
+{
+  // The projected step's solution is r_i = clamp(kappa g_i, rmin_i, 1)
+  // where phi(kappa) = sum_F tmax_i clamp(kappa g_i) = slack; phi is non-decreasing and piecewise linear, so a
   // Newton iteration (each round = the eq. 14 solution for the bounds the last
   // round hit) safeguarded by a bracket finds the root exactly in a few
   // rounds. kappa below the root is feasible, so the bracket's lower end is a
   // feasible fall-back when the round or time limit stops the iteration.
+  // False when there is none (then no step).
   const std::size_t n = this->N;
   double kLo = 0.0, kHi = Infinity;
   double kappa = kappa0;
   double previous = -1.0; // kappa of the last round, when this one is its Newton step
-  double solution = 0.0;
   bool exact = false;
   // Relative rounding of a sum of n terms.
   const double tolerance = std::max(1e-13, 2.0 * static_cast<double>(n) * DBL_EPSILON);
@@ -433,47 +485,6 @@ bool ActiveSetOptimizer::ProjectedStep(
     }
     solution = kLo;
   }
-
-  // Accept only an improvement: f is monotone along the returned points.
-  double delta = 0.0;
-  for (std::size_t i = 0; i < n; ++i)
-  {
-    if (this->State[i] == Free)
-    {
-      const double y = Clamp(solution * this->G[i], this->Lo[i], 1.0);
-      delta += ResolutionProblem::Term(this->C[i], this->Alpha, y) -
-        ResolutionProblem::Term(this->C[i], this->Alpha, r[i]);
-    }
-  }
-  this->Work += n;
-  if (!(delta <= 0.0))
-  {
-    return false;
-  }
-  for (std::size_t i = 0; i < n; ++i)
-  {
-    if (this->State[i] == Free)
-    {
-      const double y = solution * this->G[i];
-      if (y <= this->Lo[i])
-      {
-        r[i] = this->Lo[i];
-        this->State[i] = Lower;
-        ++changes;
-      }
-      else if (y >= 1.0)
-      {
-        r[i] = 1.0;
-        this->State[i] = Upper;
-        ++changes;
-      }
-      else
-      {
-        r[i] = y;
-      }
-    }
-  }
-  objective += delta;
   return true;
 }
 
