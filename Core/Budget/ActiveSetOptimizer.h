@@ -50,16 +50,15 @@ namespace timecritical
  * optimal by construction (every eq. 16 multiplier is then non-negative).
  * The start's eq. 14 kappa (the previous frame's when warm) centres an
  * interval; one O(n) pass sums the objects whose clamp has a fixed form on it
- * and lists the others, whose breakpoints lie inside (a few hundred of
- * 100,000 after a frame-to-frame change), and a safeguarded Newton iteration
+ * and lists the others, whose breakpoints lie inside (few after a
+ * frame-to-frame change), and a safeguarded Newton iteration
  * over that list finds the root; an interval that misses it is followed by a
  * wider one around a Newton step. A warm solve is three O(n) passes: the
  * start (g_i), the classification (which also buckets the Beta reduction of
  * an over-budget start), and the answer (which also reports f at the
  * reduced start; the start itself is built only when the search stops
  * early). The passes are branch-free, four objects per instruction with AVX2
- * (two with SSE2, chosen at run time): 100,000 objects in about 0.6-0.8 ms
- * of CPU time warm or cold, where the step-by-step code took 6-7 ms.
+ * (two with SSE2, chosen at run time).
  * With one option off, Algorithm 1 runs step by step as described above
  * (ProjectedSteps: a safeguarded Newton iteration on kappa over the free
  * variables, each round O(n), accepted only when feasible and not worse than
@@ -168,6 +167,17 @@ private:
     std::size_t Invalid = 0, Zero = 0;
   };
 
+  // ActiveSetOptimizer.cxx: the start and the cases decided at once.
+  /// Solve() once the input is known to be valid (Count > 0).
+  void SolveValid(const ResolutionProblem& problem, double* r, bool warmStart, Result& result);
+  /// The sanitized copies, the start point and its sums (Prepare()).
+  void PrepareStart(const ResolutionProblem& problem, double* r, bool warmStart, StartSums& sums);
+  /// Infeasible (rmin) or all full (1): true when so, with the answer in r.
+  bool SolveAtEnds(double* r, double rawBudget, const StartSums& sums, Result& result);
+  double ObjectiveAt(const double* r) const;
+  double CostAt(const double* r) const;
+
+  // ActiveSetOptimizerPasses.cxx: the O(n) lane passes.
   template <int Kind>
   void Prepare(const ResolutionProblem& problem, double* r, bool warmStart, StartSums& sums);
   /// The warm-start reduction: buckets below Cut by Beta, bucket Cut by Theta of that.
@@ -178,10 +188,8 @@ private:
     double Theta = 1.0, Beta = 0.8;
   };
   void BucketPass(const double* r, double beta);
-  Reduction PlanReduction(double* r, double budget, StartSums& sums, bool bucketsSummed);
   template <int Kind>
   void ApplyReduction(double* r, const Reduction& plan, StartSums& sums);
-  void SolveMultiplier(double* r, double budget, double rawBudget, StartSums& sums, Result& result);
   template <int Kind>
   void Finish(double* r, double kappa, double rawBudget, const Reduction& plan, Result& result);
   double Classify(double low, double high, double& slope, std::size_t& count,
@@ -189,12 +197,40 @@ private:
   template <bool Two, bool Track>
   void CandidatePhi(std::size_t count, double kappa, double other, double& phi, double& slope,
     double& phiOther, double& slopeOther, std::size_t& moved);
+
+  // ActiveSetOptimizerMultiplier.cxx: both options on, the root of phi; and
+  // the warm-start reduction's plan.
+  struct MultiplierSearch;
+  Reduction PlanReduction(double* r, double budget, StartSums& sums, bool bucketsSummed);
+  void SolveMultiplier(double* r, double budget, double rawBudget, StartSums& sums, Result& result);
+  /// The root kappa of phi(kappa) = budget; < 0 when stopped first.
+  double FindMultiplier(
+    double* r, double budget, StartSums& sums, MultiplierSearch& search, Result& result);
+  /// Stopped early: the reduced start, or the bracket's feasible end if better.
+  void StopAtStart(double* r, double budget, double rawBudget, StartSums& sums,
+    MultiplierSearch& search, Result& result);
   bool SolveCandidates(double& low, double& high, double fixedCost, double slope,
     std::size_t count, double budget, double& kappa);
+
+  // ActiveSetOptimizerSteps.cxx: Algorithm 1 step by step, and the closed form.
+  void SolveStepwise(double* r, double budget, double rawBudget, bool warmStart,
+    StartSums& sums, Result& result);
+  /// The closed form, or the warm start r when that is better.
+  void ClosedFormOrWarm(double* r, double budget, bool warmStart);
+  /// Algorithm 1's iterations; returns the steps in a row that changed nothing.
+  int Iterate(double* r, double budget, double& objective, Result& result);
+  /// Fixed cost and sum tmax_i g_i of the working set; returns its free count.
+  std::size_t Subspace(const double* r, double& fixedCost, double& weightSum);
+  /// Whether the subspace minimizer at kappa is away from r (d != 0).
+  bool Moving(const double* r, double kappa);
+  /// One step towards it; returns the working-set changes.
+  std::size_t Step(double* r, double budget, double slack, double kappa, double& objective);
   void Report(const double* r, double budget, double rawBudget, Result& result);
   double BoundKappa() const;
   double ClosedForm(double* r, double budget);
   bool ProjectedStep(double* r, double slack, double kappa0, double& objective, std::size_t& changes);
+  /// The kappa of ProjectedStep()'s solution (a safeguarded Newton iteration from kappa0).
+  bool ProjectedRoot(double slack, double kappa0, double& solution);
   std::size_t LineStep(double* r, double kappa, double& objective);
   bool Release(double kappa, bool slackTime);
   bool TimeUp();

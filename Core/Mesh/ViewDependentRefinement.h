@@ -83,15 +83,9 @@ struct RefinementStatistics
  * unwanted sleep while the eye moves less than a conservative radius (their
  * distance and angular margins), and budget candidates enter the queue with a
  * bound on their key while their threshold factor cannot drop, keyed only if
- * they reach the top; neither changes any decision. Measured on igea Loop-
- * subdivided (1.07M triangles) along ViewDependentRefinementBenchmark's
- * W2-like path (3-5 degrees and up to 10% zoom per frame, 512 px, silhouettes
- * 0.25, highlights 0.5, six frustum planes), CPU time per update, median of
- * each frame's best of 5 runs on a shared 2-core EPYC VM: fixed accuracy at
- * tau = 1 px (124K display triangles, ~7.1K splits + merges per frame)
- * 5.2 ms, was 22.0; budget (50-120K, tau floor 0; 77K triangles, ~7.4K
- * operations) 6.2 ms, was 23.0. Most of it is the splits and merges (cache
- * misses on the per-vertex records, rows and display triangles).
+ * they reach the top; neither changes any decision. Most of an update's time
+ * is the splits and merges (cache misses on the per-vertex records, rows and
+ * display triangles).
  *
  * Initialize() allocates everything (about 450 bytes per TOM vertex); updates
  * and GetTriangles() never allocate. Not thread-safe; one object per rendered
@@ -160,9 +154,9 @@ public:
    * Experimental, read by the next Initialize(): the dependency rows are the
    * wings of each split (third corners of its own triangles) instead of the
    * merge tree's rows (all neighbours of u and v before e_v). Same closure
-   * rule, far fewer forced splits (igea, tau 1 px: 76% instead of 91% of the
-   * splits); every front invariant holds in the tests, but the merge tree's
-   * error monotonicity is still computed over the full rows. Default off.
+   * rule, far fewer forced splits; every front invariant holds in the tests,
+   * but the merge tree's error monotonicity is still computed over the full
+   * rows. Default off.
    */
   void SetWingDependencies(bool on) { this->WingDependencies = on; }
   bool GetWingDependencies() const { return this->WingDependencies; }
@@ -224,16 +218,37 @@ public:
   uint32_t GetNumberOfBaseVertices() const { return this->B; }
 
 private:
+  // Defined in ViewDependentRefinementInternals.h (Node, Candidate) and
+  // ViewDependentRefinementError.cxx (Sight, ConeTest).
   struct Node;      // per-event view attributes (packed)
   struct Candidate; // a split candidate and its node
+  struct Sight;     // where the eye sees a node from
+  struct ConeTest;  // what the normal-cone tests of a node found
   struct HeapEntry
   {
     float Key;
     uint32_t Id;
   };
 
+  // Hierarchy tables (ViewDependentRefinementTables.cxx): what Initialize()
+  // builds from the TOM and its merge tree, in this order.
   template <typename T>
   void InitializeImpl(const TOMMesh& tom, const MergeTree& tree, const T* points);
+  /// Rev, RevOffsets: the transpose of the requirement rows Req, ReqOffsets.
+  void TransposeRequirements();
+  /// Children, and each vertex's child offsets and previous sibling (0: none).
+  void BuildChildren(std::vector<uint32_t>& childOffsets, std::vector<uint32_t>& previousSibling);
+  /// BlockOffsets; returns the split event of each triangle (UINT32_MAX: base).
+  std::vector<uint32_t> BuildBlocks(const TOMMesh& tom);
+  /// BirthCorners, StarOffsets and StarSlots.
+  void BuildStars(const TOMMesh& tom, const std::vector<uint32_t>& event);
+  /// Replaces the requirement rows with the wings of each split (SetWingDependencies()).
+  void UseWingRequirements();
+  void BuildLinks(const std::vector<uint32_t>& childOffsets);
+  /// Needs, from the requirement rows, which it then drops.
+  void BuildNeeds(const std::vector<uint32_t>& previousSibling);
+  /// Sizes everything the updates use (they never allocate).
+  void AllocateUpdateState();
   /// Widens nodes so that priorities never grow down the split order (see .cxx).
   void MakePrioritiesMonotone();
   void PrepareView();
@@ -244,8 +259,10 @@ private:
   }
   /// Starts a new update: frame stamps (priority cache, queues) move on.
   void NextFrame();
+  // Projected error (ViewDependentRefinementError.cxx; the small members
+  // that several files' loops call are inline, in the internal header).
   /// Projected error of event v over its local threshold factor; negative when culled.
-  double Priority(uint32_t v) const;
+  inline double Priority(uint32_t v) const;
   /// How far the eye may move (the settings, light and viewport staying)
   /// before an unwanted node can be wanted, and before its threshold factor
   /// can drop below Factor (0: no such bound).
@@ -257,34 +274,47 @@ private:
   };
   /// Priority() of a node, and with `sleep` how long it keeps.
   double Evaluate(const Node& node, Sleep* sleep = nullptr) const;
+  // The steps of Evaluate().
+  /// Wholly outside a frustum plane.
+  inline bool Outside(const Sight& sight) const;
+  /// Perspective sight of the node; true when that alone decides `key`.
+  inline bool SeePerspective(const Node& node, Sight& sight, Sleep* sleep, double& key) const;
+  /// Back-face and silhouette tests; true when every normal faces away.
+  inline bool FacesAway(const Node& node, const Sight& sight, ConeTest& cone, Sleep* sleep) const;
+  inline void TestHighlight(const Node& node, const Sight& sight, ConeTest& cone) const;
+  /// How long the decision on a node with this key keeps (perspective).
+  inline void MeasureSleep(
+    const Node& node, const Sight& sight, const ConeTest& cone, double key, Sleep& sleep) const;
   /// >= the key of a node whose threshold factor is at least `factor` (the
   /// current eye, near plane and tau; ignores culling, which only lowers keys).
-  double KeyBound(const Node& node, float factor) const;
-  void Doze(Candidate& e, const Sleep& sleep) const; // e keeps what Evaluate() found
+  inline double KeyBound(const Node& node, float factor) const;
+  inline void Doze(Candidate& e, const Sleep& sleep) const; // e keeps what Evaluate() found
   /// Eye move that keeps angular margins (sines; < 0: none) at dist, radius r.
   double WakeRadius(double dist, double r, double margin0, double margin1) const;
 
   /// Priority(v), computed once per update.
-  float Key(uint32_t v);
-  bool Wanted(uint32_t v);
+  inline float Key(uint32_t v);
+  inline bool Wanted(uint32_t v);
   /// Whether a node with this key is split (or kept) at the pixel threshold.
   bool IsWanted(float key) const
   {
     return key >= 0.0f && (key > this->PixelThreshold || this->PixelThreshold <= 0.0);
   }
   /// Conservative, cheap: true only when Wanted(v) is false (whatever the culling).
-  bool SurelyUnwanted(const Node& node) const;
+  inline bool SurelyUnwanted(const Node& node) const;
+
+  // The front (ViewDependentRefinementFront.cxx).
   void Split(uint32_t v);
   void Merge(uint32_t v);
   /// Splits v and, first, every split it needs. Returns false when blocked.
   bool ForceSplit(uint32_t v);
   /// No display vertex needs v (and v is a leaf, the last child of its parent).
-  bool CanMerge(uint32_t v) const;
+  inline bool CanMerge(uint32_t v) const;
   /// First inactive vertex whose split v needs, v itself when none; UINT32_MAX
   /// when blocked. Resumes the scan at (stage, index), 0 at first.
   uint32_t NextRequirement(uint32_t v, uint8_t& stage, uint32_t& index) const;
-  void PrefetchOperation(uint32_t v) const; // what Split(v) or Merge(v) reads
-  uint32_t NextChild(uint32_t w) const;
+  inline void PrefetchOperation(uint32_t v) const; // what Split(v) or Merge(v) reads
+  inline uint32_t NextChild(uint32_t w) const;
   uint32_t LastActiveChild(uint32_t w) const;
   void AddDisplay(uint32_t t);
   void RemoveDisplay(uint32_t t);
@@ -295,6 +325,9 @@ private:
   // One more / one fewer displayed vertex needs x (Holds).
   void Hold(uint32_t x);
   void Release(uint32_t x);
+
+  // The updates (ViewDependentRefinementUpdates.cxx: both modes;
+  // ViewDependentRefinementBudget.cxx: the budget's queues).
   /// Merges every unwanted vertex that nothing displayed needs, finest first
   /// (stops early when a bounded budget update runs out of time).
   void MergeUnwanted();
@@ -306,6 +339,24 @@ private:
   void OfferMerge(uint32_t v);
   void SortPending(uint32_t size);
   void ReachSplitTop();
+  // The steps of UpdateBudget().
+  /// Keys the split candidates into Pending (sorted) and the merge candidates into MergeHeap.
+  void QueueBudgetCandidates();
+  /// Splits and merges towards the budget, best first, until it is spent.
+  void SpendBudget(uint32_t triangleBudget);
+  /// Splits the top candidate, whose own triangles fit, paying for the
+  /// splits it forces with less useful merges, or undoes it all.
+  void SplitPaidFor(const HeapEntry& top, uint32_t triangleBudget);
+  /// Full: one merge less useful than the top candidate, towards its split;
+  /// false when nothing more fits.
+  bool TradeForSplit(const HeapEntry& top, uint32_t triangleBudget, uint32_t& misfits);
+  /// Pops the smallest mergeable entry; UINT32_MAX when there is none.
+  uint32_t PopMerge();
+  /// The smallest mergeable entry, left on the heap; nullptr when there is none.
+  const HeapEntry* TopMerge();
+  void PopSplit();
+  /// Undoes the merges of the running trade since TradeLog[from], newest first.
+  void UndoMerges(uint32_t from);
 
   /// What Split() and Merge() must tell the running update about new candidates.
   enum class UpdateMode
