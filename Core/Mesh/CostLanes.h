@@ -77,7 +77,7 @@ struct CostLanes
   T A00, A01, A02, A11, A12, A22, G0, G1, G2, C, OriginX, OriginY, OriginZ;
   T InverseRootWeight, MomentWeight;
 
-  /// From a quadric with the fields of LocalQuadric (CollapseQuadric.h).
+  /// From a quadric with the fields of LocalQuadric (LocalQuadric.h).
   template <typename Q>
   explicit CostLanes(const Q& q)
     : A00(q.A00)

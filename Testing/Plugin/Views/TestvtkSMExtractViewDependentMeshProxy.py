@@ -1,6 +1,7 @@
 #!/usr/bin/python3
 # SPDX-License-Identifier: BSD-3-Clause
-"""State files and scripts written before Extract View-Dependent Mesh took the
+"""vtkSMExtractViewDependentMeshProxy, the proxy of Extract View-Dependent
+Mesh: state files and scripts written before the filter took the
 common numbering of the refinement modes (0 = budget, 1 = fixed accuracy) still
 load in the mode they were saved in.
 
@@ -25,7 +26,7 @@ from timecritical import vtkExtractViewDependentMesh
 
 from timecritical_testing import load_plugin, output_dir  # noqa: E402
 
-DATA = os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir, "Data", "State")
+DATA = os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir, os.pardir, "Data", "State")
 FIXED = vtkExtractViewDependentMesh.FIXED_ACCURACY
 BUDGET = vtkExtractViewDependentMesh.BUDGET
 
@@ -37,7 +38,7 @@ def triangles(proxy):
     return servermanager.Fetch(proxy).GetNumberOfPolys()
 
 
-class TestLegacyRefinementModeState(unittest.TestCase):
+class LegacyRefinementModeStateTests(unittest.TestCase):
     def setUp(self):
         ResetSession()
 
@@ -77,7 +78,7 @@ class TestLegacyRefinementModeState(unittest.TestCase):
 
     def test_new_state_saves_the_new_property_only(self):
         extract = self.load("ViewDependentMeshOldTriangleBudget.pvsm")
-        path = os.path.join(output_dir("TestLegacyRefinementModeState"), "resaved.pvsm")
+        path = os.path.join(output_dir("TestvtkSMExtractViewDependentMeshProxy"), "resaved.pvsm")
         SaveState(path)
         with open(path) as state:
             text = state.read()
