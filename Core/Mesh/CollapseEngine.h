@@ -52,6 +52,8 @@ class CollapseEngine
 {
 public:
   /// useHeap: keep the vertices in an indexed heap by key (greedy schedules).
+  /// The engine keeps a reference to `options` (its progress callback
+  /// included): they must outlive it, so a temporary must not be passed.
   CollapseEngine(const TOMBuildOptions& options, bool useHeap)
     : Options(options)
     , Progress(options.Progress)
