@@ -39,6 +39,7 @@
 #include "MergeTreeAttributes.h"
 #include "MeshConversion.h"
 #include "PlotScript.h"
+#include "PolicyComparison.h"
 #include "PolicyGoal.h"
 #include "PolicySelection.h"
 #include "MeshIO.h"
@@ -599,35 +600,25 @@ private:
 //------------------------------------------------------------------------------
 // Records and statistics
 
-struct FrameRecord
+struct FrameRecord : PolicyFrame
 {
-  double Measured = NaN;   ///< wall clock around Render() (+ glFinish), seconds
   double Refinement = NaN; ///< seconds refining the front(s) in that render
-  double Triangles = 0.0;
   double ObjectTriangles = 0.0; ///< of the large object's front (W2: = Triangles)
   double Vertices = 0.0;
   double Splits = 0.0, Merges = 0.0;
   double Resolution = NaN; ///< budget: the policy's resolution of the large object
-  double Predicted = NaN;  ///< vtkTimeCriticalRenderer's prediction
-  double PSNR = NaN;
-  bool Identical = false;
 };
 
-struct Statistics
+struct Statistics : PolicyStatistics
 {
-  int Frames = 0;
-  double Mean = NaN, Median = NaN, Max = NaN, ShareWithin = NaN;
-  double TrianglesMean = NaN, TrianglesShare = NaN; ///< share: mean / full triangle count
-  double TrianglesMedianShare = NaN;                ///< median / full triangle count
-  double PSNRMean = NaN, PSNRMedian = NaN, PSNRMin = NaN;
-  int PSNRFrames = 0, IdenticalFrames = 0;
+  double TrianglesShare = NaN;       ///< mean / full triangle count
+  double TrianglesMedianShare = NaN; ///< median / full triangle count
   double RefinementMean = NaN, RefinementMax = NaN;
   double RefinementPer100K = NaN; ///< mean refinement time x 100K / mean display triangles
   /// Mean refinement time of the frames whose front has 50K to 200K display triangles.
   double RefinementNear100K = NaN;
   int RefinementNear100KFrames = 0;
   double SplitsMean = NaN, MergesMean = NaN;
-  double PredictionError = NaN;
 };
 
 struct PolicyRun
@@ -644,20 +635,10 @@ struct PolicyRun
 Statistics ComputeStatistics(const std::vector<FrameRecord>& frames, double target, double full)
 {
   Statistics s;
-  s.Frames = static_cast<int>(frames.size());
-  std::vector<double> measured, psnr, triangles, refinement, near100K, splits, merges,
-    error;
-  int within = 0;
+  static_cast<PolicyStatistics&>(s) = ComputePolicyStatistics(frames, target);
+  std::vector<double> refinement, near100K, splits, merges;
   for (const FrameRecord& f : frames)
   {
-    measured.push_back(f.Measured);
-    within += f.Measured <= 1.1 * target ? 1 : 0;
-    triangles.push_back(f.Triangles);
-    if (std::isfinite(f.PSNR))
-    {
-      psnr.push_back(f.PSNR);
-      s.IdenticalFrames += f.Identical ? 1 : 0;
-    }
     if (std::isfinite(f.Refinement))
     {
       refinement.push_back(f.Refinement);
@@ -668,26 +649,13 @@ Statistics ComputeStatistics(const std::vector<FrameRecord>& frames, double targ
         near100K.push_back(f.Refinement);
       }
     }
-    if (std::isfinite(f.Predicted) && f.Measured > 0.0)
-    {
-      error.push_back(std::abs(f.Predicted - f.Measured) / f.Measured);
-    }
   }
-  if (measured.empty())
+  if (frames.empty())
   {
     return s;
   }
-  s.Mean = Mean(measured);
-  s.Median = Median(measured);
-  s.Max = *std::max_element(measured.begin(), measured.end());
-  s.ShareWithin = static_cast<double>(within) / static_cast<double>(measured.size());
-  s.TrianglesMean = Mean(triangles);
   s.TrianglesShare = full > 0.0 ? s.TrianglesMean / full : NaN;
-  s.TrianglesMedianShare = full > 0.0 ? Median(triangles) / full : NaN;
-  s.PSNRFrames = static_cast<int>(psnr.size());
-  s.PSNRMean = Mean(psnr);
-  s.PSNRMedian = Median(psnr);
-  s.PSNRMin = psnr.empty() ? NaN : *std::min_element(psnr.begin(), psnr.end());
+  s.TrianglesMedianShare = full > 0.0 ? s.TrianglesMedian / full : NaN;
   s.RefinementMean = Mean(refinement);
   s.RefinementMax = refinement.empty() ? NaN : *std::max_element(refinement.begin(), refinement.end());
   s.RefinementPer100K = s.TrianglesMean > 0.0 ? s.RefinementMean * 1e5 / s.TrianglesMean : NaN;
@@ -695,7 +663,6 @@ Statistics ComputeStatistics(const std::vector<FrameRecord>& frames, double targ
   s.RefinementNear100KFrames = static_cast<int>(near100K.size());
   s.SplitsMean = Mean(splits);
   s.MergesMean = Mean(merges);
-  s.PredictionError = Mean(error);
   return s;
 }
 
@@ -1376,25 +1343,14 @@ std::vector<Goal> EvaluateGoals(const std::vector<PolicyRun>& runs, const Settin
   return goals;
 }
 
-std::string Ms(double x)
-{
-  return std::isfinite(x) ? Format("%.1f", 1000.0 * x) : "-";
-}
-std::string Pct(double x)
-{
-  return std::isfinite(x) ? Format("%.1f%%", 100.0 * x) : "-";
-}
-std::string Db(double x)
-{
-  return std::isfinite(x) ? Format("%.2f", x) : "-";
-}
-
 void PrintRow(const std::string& label, const Statistics& s, bool reference)
 {
-  std::printf("%-30s %8s %8s %8s %8s %8s %9s %8s %8s %9s %9s\n", label.c_str(), Ms(s.Mean).c_str(),
-    Ms(s.Median).c_str(), Ms(s.Max).c_str(), Pct(s.ShareWithin).c_str(),
-    Pct(s.TrianglesShare).c_str(), Format("%.0f", s.TrianglesMean).c_str(),
-    reference ? "ref" : Db(s.PSNRMean).c_str(), reference ? "ref" : Db(s.PSNRMedian).c_str(),
+  std::printf("%-30s %8s %8s %8s %8s %8s %9s %8s %8s %9s %9s\n", label.c_str(),
+    MillisecondsCell(s.Mean).c_str(), MillisecondsCell(s.Median).c_str(),
+    MillisecondsCell(s.Max).c_str(), PercentCell(s.ShareWithin).c_str(),
+    PercentCell(s.TrianglesShare).c_str(), Format("%.0f", s.TrianglesMean).c_str(),
+    reference ? "ref" : DecibelCell(s.PSNRMean).c_str(),
+    reference ? "ref" : DecibelCell(s.PSNRMedian).c_str(),
     std::isfinite(s.RefinementMean) ? Format("%.2f", 1000.0 * s.RefinementMean).c_str() : "-",
     std::isfinite(s.RefinementMax) ? Format("%.2f", 1000.0 * s.RefinementMax).c_str() : "-");
 }
@@ -1408,37 +1364,29 @@ void PrintHeader()
 std::string StatisticsJson(const Statistics& s)
 {
   std::ostringstream out;
-  out << "{\"frames\": " << s.Frames << ", \"mean\": " << Number(s.Mean) << ", \"median\": "
-      << Number(s.Median) << ", \"max\": " << Number(s.Max) << ", \"share_within_110_percent\": "
-      << Number(s.ShareWithin) << ", \"triangles_mean\": " << Number(s.TrianglesMean, 9)
-      << ", \"triangles_share\": " << Number(s.TrianglesShare)
-      << ", \"triangles_median_share\": " << Number(s.TrianglesMedianShare) << ", \"psnr_frames\": "
-      << s.PSNRFrames << ", \"psnr_mean\": " << Number(s.PSNRMean) << ", \"psnr_median\": "
-      << Number(s.PSNRMedian) << ", \"psnr_min\": " << Number(s.PSNRMin)
-      << ", \"identical_frames\": " << s.IdenticalFrames << ", \"refinement_mean\": "
+  out << "{" << PolicyStatisticsJsonFields(s) << ", \"triangles_share\": "
+      << Number(s.TrianglesShare) << ", \"triangles_median_share\": "
+      << Number(s.TrianglesMedianShare) << ", \"psnr_frames\": " << s.PSNRFrames
+      << ", \"refinement_mean\": "
       << Number(s.RefinementMean) << ", \"refinement_max\": " << Number(s.RefinementMax)
       << ", \"refinement_per_100k_triangles\": " << Number(s.RefinementPer100K)
       << ", \"refinement_50k_to_200k\": " << Number(s.RefinementNear100K)
       << ", \"refinement_50k_to_200k_frames\": " << s.RefinementNear100KFrames
       << ", \"splits_mean\": " << Number(s.SplitsMean) << ", \"merges_mean\": "
-      << Number(s.MergesMean) << ", \"prediction_error\": " << Number(s.PredictionError) << "}";
+      << Number(s.MergesMean) << "}";
   return out.str();
 }
 
 std::string FramesJson(const std::vector<FrameRecord>& f)
 {
   std::ostringstream out;
-  out << "{\"measured\": " << Array(f, [](const FrameRecord& r) { return r.Measured; })
-      << ", \"triangles\": " << Array(f, [](const FrameRecord& r) { return r.Triangles; }, 10)
-      << ", \"object_triangles\": "
+  out << "{" << PolicyFramesJsonFields(f, ", ") << ", \"object_triangles\": "
       << Array(f, [](const FrameRecord& r) { return r.ObjectTriangles; }, 10)
       << ", \"vertices\": " << Array(f, [](const FrameRecord& r) { return r.Vertices; }, 10)
       << ", \"refinement\": " << Array(f, [](const FrameRecord& r) { return r.Refinement; })
       << ", \"splits\": " << Array(f, [](const FrameRecord& r) { return r.Splits; }, 10)
       << ", \"merges\": " << Array(f, [](const FrameRecord& r) { return r.Merges; }, 10)
-      << ", \"resolution\": " << Array(f, [](const FrameRecord& r) { return r.Resolution; })
-      << ", \"predicted\": " << Array(f, [](const FrameRecord& r) { return r.Predicted; })
-      << ", \"psnr\": " << Array(f, [](const FrameRecord& r) { return r.PSNR; }, 5) << "}";
+      << ", \"resolution\": " << Array(f, [](const FrameRecord& r) { return r.Resolution; }) << "}";
   return out.str();
 }
 
@@ -1641,9 +1589,10 @@ int main(int argc, char* argv[])
       if (mixed->W1.Found)
       {
         std::printf("%-30s %8s %8s %8s %8s %8s %9s %8s %8s   (%s, %.0f frames)\n",
-          "W1 TimeCritical (json)", Ms(mixed->W1.Mean).c_str(), Ms(mixed->W1.Median).c_str(),
-          Ms(mixed->W1.Max).c_str(), Pct(mixed->W1.ShareWithin).c_str(), "", "",
-          Db(mixed->W1.PSNRMean).c_str(), Db(mixed->W1.PSNRMedian).c_str(),
+          "W1 TimeCritical (json)", MillisecondsCell(mixed->W1.Mean).c_str(),
+          MillisecondsCell(mixed->W1.Median).c_str(), MillisecondsCell(mixed->W1.Max).c_str(),
+          PercentCell(mixed->W1.ShareWithin).c_str(), "", "",
+          DecibelCell(mixed->W1.PSNRMean).c_str(), DecibelCell(mixed->W1.PSNRMedian).c_str(),
           mixed->W1.Source.c_str(), mixed->W1.Frames);
       }
       else if (!settings.W1Json.empty())

@@ -32,6 +32,7 @@
 #include "MachineInfo.h"
 #include "MeshConversion.h"
 #include "PlotScript.h"
+#include "PolicyComparison.h"
 #include "PolicyGoal.h"
 #include "PolicySelection.h"
 #include "MeshIO.h"
@@ -315,37 +316,25 @@ vtkStandardNewMacro(CountingLODProp3D);
 //------------------------------------------------------------------------------
 // Records and statistics
 
-struct FrameRecord
+struct FrameRecord : PolicyFrame
 {
-  double Measured = NaN;         ///< wall clock around Render() (+ glFinish), seconds
   double RendererMeasured = NaN; ///< vtkTimeCriticalRenderer::GetMeasuredFrameTime() after it
-  double Predicted = NaN;
   double Fixed = NaN;  ///< t_fixed of the prediction
   double Margin = NaN; ///< safety margin kept free of the target
   double Optimizer = NaN;
   double Heuristics = NaN;
   int Iterations = 0;
   bool Converged = true;
-  double Triangles = 0.0;
   double VisibleTriangles = 0.0; ///< full-resolution triangles of the objects not culled
   double Culled = 0.0;
-  double PSNR = NaN;
-  bool Identical = false;
   std::array<int, 6> LODCounts{}; ///< vtkLODProp3D: props drawn at each level
 };
 
-struct Statistics
+struct Statistics : PolicyStatistics
 {
-  int Frames = 0;
-  double Mean = NaN, Median = NaN, Min = NaN, Max = NaN, CV = NaN;
-  double ShareWithin = NaN; ///< frames <= 1.1 target
-  double PredictionError = NaN, PredictionErrorMax = NaN;
   double RendererVsWall = NaN; ///< mean (renderer measured - wall) / wall
   double OptimizerMean = NaN, OptimizerMax = NaN;
   double IterationsMean = NaN;
-  double PSNRMean = NaN, PSNRMedian = NaN, PSNRMin = NaN;
-  int IdenticalFrames = 0;
-  double TrianglesMean = NaN;
   int ReducedFrames = 0; ///< vtkLODProp3D: frames with some prop below its full level
   std::array<long long, 6> LODPropFrames{}; ///< vtkLODProp3D: props drawn per level, all frames
   /// Over the frames whose full-resolution time ('none', same camera) exceeds
@@ -418,18 +407,10 @@ void ComputeHeavyStatistics(
 Statistics ComputeStatistics(const std::vector<FrameRecord>& frames, double target)
 {
   Statistics s;
-  s.Frames = static_cast<int>(frames.size());
-  std::vector<double> measured, error, rendererDiff, optimizer, iterations, psnr, triangles;
-  int within = 0;
-  for (size_t i = 0; i < frames.size(); ++i)
+  static_cast<PolicyStatistics&>(s) = ComputePolicyStatistics(frames, target);
+  std::vector<double> rendererDiff, optimizer, iterations;
+  for (const FrameRecord& f : frames)
   {
-    const FrameRecord& f = frames[i];
-    measured.push_back(f.Measured);
-    within += f.Measured <= 1.1 * target ? 1 : 0;
-    if (std::isfinite(f.Predicted) && f.Measured > 0.0)
-    {
-      error.push_back(std::abs(f.Predicted - f.Measured) / f.Measured);
-    }
     if (std::isfinite(f.RendererMeasured) && f.Measured > 0.0)
     {
       rendererDiff.push_back((f.RendererMeasured - f.Measured) / f.Measured);
@@ -439,12 +420,6 @@ Statistics ComputeStatistics(const std::vector<FrameRecord>& frames, double targ
       optimizer.push_back(f.Optimizer);
       iterations.push_back(f.Iterations);
     }
-    if (std::isfinite(f.PSNR))
-    {
-      psnr.push_back(f.PSNR);
-      s.IdenticalFrames += f.Identical ? 1 : 0;
-    }
-    triangles.push_back(f.Triangles);
     bool reduced = false;
     for (size_t level = 0; level < f.LODCounts.size(); ++level)
     {
@@ -453,32 +428,14 @@ Statistics ComputeStatistics(const std::vector<FrameRecord>& frames, double targ
     }
     s.ReducedFrames += reduced ? 1 : 0;
   }
-  if (measured.empty())
+  if (frames.empty())
   {
     return s;
   }
-  s.Mean = Mean(measured);
-  s.Median = Median(measured);
-  s.Min = *std::min_element(measured.begin(), measured.end());
-  s.Max = *std::max_element(measured.begin(), measured.end());
-  double variance = 0.0;
-  for (double x : measured)
-  {
-    variance += (x - s.Mean) * (x - s.Mean);
-  }
-  variance /= static_cast<double>(measured.size());
-  s.CV = s.Mean > 0.0 ? std::sqrt(variance) / s.Mean : NaN;
-  s.ShareWithin = static_cast<double>(within) / static_cast<double>(measured.size());
-  s.PredictionError = Mean(error);
-  s.PredictionErrorMax = error.empty() ? NaN : *std::max_element(error.begin(), error.end());
   s.RendererVsWall = Mean(rendererDiff);
   s.OptimizerMean = Mean(optimizer);
   s.OptimizerMax = optimizer.empty() ? NaN : *std::max_element(optimizer.begin(), optimizer.end());
   s.IterationsMean = Mean(iterations);
-  s.PSNRMean = Mean(psnr);
-  s.PSNRMedian = Median(psnr);
-  s.PSNRMin = psnr.empty() ? NaN : *std::min_element(psnr.begin(), psnr.end());
-  s.TrianglesMean = Mean(triangles);
   return s;
 }
 
@@ -1081,38 +1038,15 @@ void PrintTable(const std::vector<PolicyRun>& runs, const std::vector<Goal>& goa
   for (const auto& run : runs)
   {
     const Statistics& s = run.Stats;
-    const auto ms = [](double x) {
-      char b[32];
-      if (!std::isfinite(x))
-      {
-        return std::string("-");
-      }
-      std::snprintf(b, sizeof(b), "%.3f", 1000.0 * x);
-      return std::string(b);
-    };
-    const auto pct = [](double x) {
-      char b[32];
-      if (!std::isfinite(x))
-      {
-        return std::string("-");
-      }
-      std::snprintf(b, sizeof(b), "%.1f%%", 100.0 * x);
-      return std::string(b);
-    };
     const bool isReference = run.Policy->Kind == PolicyKind::None;
     const auto db = [isReference](double x) {
-      if (isReference || !std::isfinite(x))
-      {
-        return std::string(isReference ? "ref" : "-");
-      }
-      char b[32];
-      std::snprintf(b, sizeof(b), "%.2f", x);
-      return std::string(b);
+      return isReference ? std::string("ref") : DecibelCell(x);
     };
     std::printf("%-18s %8.1f %8.1f %8.1f %7s %8s %8s %9s %9s %8s %8s %10.0f\n", run.Policy->Label,
-      1000.0 * s.Mean, 1000.0 * s.Median, 1000.0 * s.Max, pct(s.CV).c_str(),
-      pct(s.ShareWithin).c_str(), pct(s.PredictionError).c_str(), ms(s.OptimizerMean).c_str(),
-      ms(s.OptimizerMax).c_str(), db(s.PSNRMean).c_str(), db(s.PSNRMedian).c_str(),
+      1000.0 * s.Mean, 1000.0 * s.Median, 1000.0 * s.Max, PercentCell(s.CV).c_str(),
+      PercentCell(s.ShareWithin).c_str(), PercentCell(s.PredictionError).c_str(),
+      MillisecondsCell(s.OptimizerMean, 3).c_str(), MillisecondsCell(s.OptimizerMax, 3).c_str(),
+      db(s.PSNRMean).c_str(), db(s.PSNRMedian).c_str(),
       s.TrianglesMean);
   }
   std::printf("(target %.0f ms; PSNR against the 'none' frame of the same camera, identical "
@@ -1221,20 +1155,13 @@ void WriteJson(const Settings& settings, const ObjectMesh& object, const Scene& 
       out << (level ? ", " : "") << Number(run.LODEstimated[level]);
     }
     out << "], \"lod_allocated_render_time\": " << Number(run.LODAllocated)
-        << ",\n     \"statistics\": {\"frames\": " << s.Frames << ", \"mean\": " << Number(s.Mean)
-        << ", \"median\": " << Number(s.Median) << ", \"min\": " << Number(s.Min)
-        << ", \"max\": " << Number(s.Max) << ", \"cv\": " << Number(s.CV)
-        << ", \"share_within_110_percent\": " << Number(s.ShareWithin)
-        << ", \"prediction_error\": " << Number(s.PredictionError)
+        << ",\n     \"statistics\": {" << PolicyStatisticsJsonFields(s)
+        << ", \"min\": " << Number(s.Min) << ", \"cv\": " << Number(s.CV)
         << ", \"prediction_error_max\": " << Number(s.PredictionErrorMax)
         << ", \"renderer_vs_wall\": " << Number(s.RendererVsWall)
         << ", \"optimizer_mean\": " << Number(s.OptimizerMean)
         << ", \"optimizer_max\": " << Number(s.OptimizerMax)
         << ", \"iterations_mean\": " << Number(s.IterationsMean)
-        << ", \"psnr_mean\": " << Number(s.PSNRMean) << ", \"psnr_median\": " << Number(s.PSNRMedian)
-        << ", \"psnr_min\": " << Number(s.PSNRMin)
-        << ", \"identical_frames\": " << s.IdenticalFrames
-        << ", \"triangles_mean\": " << Number(s.TrianglesMean, 9)
         << ", \"frames_with_reduced_lod\": " << s.ReducedFrames
         << ", \"heavy_frames\": " << s.HeavyFrames << ", \"heavy_mean\": " << Number(s.HeavyMean)
         << ", \"heavy_cv\": " << Number(s.HeavyCV)
@@ -1242,11 +1169,9 @@ void WriteJson(const Settings& settings, const ObjectMesh& object, const Scene& 
         << ", \"heavy_psnr_median\": " << Number(s.HeavyPSNRMedian) << "},\n";
     const auto& f = run.Frames;
     out << "     \"frames\": {\n";
-    out << "      \"measured\": " << Array(f, [](const FrameRecord& r) { return r.Measured; }) << ",\n";
+    out << "      " << PolicyFramesJsonFields(f, ",\n      ") << ",\n";
     out << "      \"renderer_measured\": "
         << Array(f, [](const FrameRecord& r) { return r.RendererMeasured; }) << ",\n";
-    out << "      \"predicted\": " << Array(f, [](const FrameRecord& r) { return r.Predicted; })
-        << ",\n";
     out << "      \"fixed\": " << Array(f, [](const FrameRecord& r) { return r.Fixed; }) << ",\n";
     out << "      \"margin\": " << Array(f, [](const FrameRecord& r) { return r.Margin; }) << ",\n";
     out << "      \"optimizer\": " << Array(f, [](const FrameRecord& r) { return r.Optimizer; })
@@ -1257,12 +1182,9 @@ void WriteJson(const Settings& settings, const ObjectMesh& object, const Scene& 
         << Array(f, [](const FrameRecord& r) { return static_cast<double>(r.Iterations); }) << ",\n";
     out << "      \"converged\": "
         << Array(f, [](const FrameRecord& r) { return r.Converged ? 1.0 : 0.0; }) << ",\n";
-    out << "      \"triangles\": " << Array(f, [](const FrameRecord& r) { return r.Triangles; }, 10)
-        << ",\n";
     out << "      \"visible_triangles\": "
         << Array(f, [](const FrameRecord& r) { return r.VisibleTriangles; }, 10) << ",\n";
-    out << "      \"culled\": " << Array(f, [](const FrameRecord& r) { return r.Culled; }) << ",\n";
-    out << "      \"psnr\": " << Array(f, [](const FrameRecord& r) { return r.PSNR; }, 5);
+    out << "      \"culled\": " << Array(f, [](const FrameRecord& r) { return r.Culled; });
     if (run.Policy->Kind == PolicyKind::LODProp3D)
     {
       out << ",\n      \"lod_counts\": [";
