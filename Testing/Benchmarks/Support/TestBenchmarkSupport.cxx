@@ -1,11 +1,12 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Tests of the benchmark support library's pieces that have no rendering:
-// statistics, JSON output, argument parsing, the W1 specification and Loop
+// statistics, policy comparison, JSON output, argument parsing, the W1 specification and Loop
 // subdivision.
 #include "BenchmarkArguments.h"
 #include "BenchmarkJson.h"
 #include "BenchmarkStatistics.h"
 #include "LoopSubdivision.h"
+#include "PolicyComparison.h"
 #include "W1SceneSpecification.h"
 
 #include <gtest/gtest.h>
@@ -169,5 +170,68 @@ TEST(LoopSubdivision, QuadruplesTheTriangles)
   EXPECT_EQ(once.NumberOfPoints(), sphere.NumberOfPoints() + 3 * sphere.NumberOfTriangles() / 2);
   EXPECT_EQ(LoopSubdivide(sphere, 0).NumberOfTriangles(), sphere.NumberOfTriangles());
   EXPECT_THROW(LoopSubdivide(sphere, -1), std::invalid_argument);
+}
+
+struct ExtendedFrame : PolicyFrame
+{
+  double Extra = 0.0;
+};
+
+TEST(PolicyComparison, StatisticsOfTheCommonFields)
+{
+  std::vector<ExtendedFrame> frames(4);
+  const double measured[] = { 0.10, 0.20, 0.05, 0.15 };
+  for (size_t i = 0; i < frames.size(); ++i)
+  {
+    frames[i].Measured = measured[i];
+    frames[i].Triangles = 100.0 * static_cast<double>(i + 1);
+  }
+  frames[0].Predicted = 0.11; // error 10%
+  frames[1].Predicted = 0.10; // error 50%
+  frames[2].PSNR = 30.0;
+  frames[3].PSNR = 99.0;
+  frames[3].Identical = true;
+  const PolicyStatistics s = ComputePolicyStatistics(frames, 0.1);
+  EXPECT_EQ(s.Frames, 4);
+  EXPECT_DOUBLE_EQ(s.Mean, 0.125);
+  EXPECT_DOUBLE_EQ(s.Median, 0.125);
+  EXPECT_DOUBLE_EQ(s.Min, 0.05);
+  EXPECT_DOUBLE_EQ(s.Max, 0.20);
+  EXPECT_NEAR(s.CV, std::sqrt(0.0125 / 4.0) / 0.125, 1e-12);
+  EXPECT_DOUBLE_EQ(s.ShareWithin, 0.5); // 0.10 and 0.05 are <= 0.11
+  EXPECT_NEAR(s.PredictionError, 0.30, 1e-12);
+  EXPECT_NEAR(s.PredictionErrorMax, 0.50, 1e-12);
+  EXPECT_DOUBLE_EQ(s.TrianglesMean, 250.0);
+  EXPECT_DOUBLE_EQ(s.TrianglesMedian, 250.0);
+  EXPECT_EQ(s.PSNRFrames, 2);
+  EXPECT_EQ(s.IdenticalFrames, 1);
+  EXPECT_DOUBLE_EQ(s.PSNRMean, 64.5);
+  EXPECT_DOUBLE_EQ(s.PSNRMin, 30.0);
+}
+
+TEST(PolicyComparison, EmptyRunIsNaN)
+{
+  const PolicyStatistics s = ComputePolicyStatistics(std::vector<PolicyFrame>(), 0.1);
+  EXPECT_EQ(s.Frames, 0);
+  EXPECT_TRUE(std::isnan(s.Mean));
+  EXPECT_TRUE(std::isnan(s.ShareWithin));
+  EXPECT_NE(PolicyStatisticsJsonFields(s).find("\"mean\": null"), std::string::npos);
+}
+
+TEST(PolicyComparison, CellsAndFrameArrays)
+{
+  EXPECT_EQ(MillisecondsCell(0.0123), "12.3");
+  EXPECT_EQ(MillisecondsCell(0.0123, 3), "12.300");
+  EXPECT_EQ(MillisecondsCell(std::nan("")), "-");
+  EXPECT_EQ(PercentCell(0.256), "25.6%");
+  EXPECT_EQ(DecibelCell(41.234), "41.23");
+  EXPECT_EQ(DecibelCell(std::nan("")), "-");
+  std::vector<PolicyFrame> frames(1);
+  frames[0].Measured = 0.5;
+  frames[0].Triangles = 7.0;
+  const std::string json = PolicyFramesJsonFields(frames, ", ");
+  EXPECT_EQ(json.find("\"measured\": [0.5]"), 0u);
+  EXPECT_NE(json.find(", \"triangles\": [7]"), std::string::npos);
+  EXPECT_NE(json.find(", \"psnr\": [null]"), std::string::npos);
 }
 }
