@@ -262,7 +262,7 @@ private:
   // Projected error (ViewDependentRefinementError.cxx; the small members
   // that several files' loops call are inline, in the internal header).
   /// Projected error of event v over its local threshold factor; negative when culled.
-  inline double Priority(uint32_t v) const;
+  double Priority(uint32_t v) const;
   /// How far the eye may move (the settings, light and viewport staying)
   /// before an unwanted node can be wanted, and before its threshold factor
   /// can drop below Factor (0: no such bound).
@@ -287,21 +287,21 @@ private:
     const Node& node, const Sight& sight, const ConeTest& cone, double key, Sleep& sleep) const;
   /// >= the key of a node whose threshold factor is at least `factor` (the
   /// current eye, near plane and tau; ignores culling, which only lowers keys).
-  inline double KeyBound(const Node& node, float factor) const;
-  inline void Doze(Candidate& e, const Sleep& sleep) const; // e keeps what Evaluate() found
+  double KeyBound(const Node& node, float factor) const;
+  void Doze(Candidate& e, const Sleep& sleep) const; // e keeps what Evaluate() found
   /// Eye move that keeps angular margins (sines; < 0: none) at dist, radius r.
   double WakeRadius(double dist, double r, double margin0, double margin1) const;
 
   /// Priority(v), computed once per update.
-  inline float Key(uint32_t v);
-  inline bool Wanted(uint32_t v);
+  float Key(uint32_t v);
+  bool Wanted(uint32_t v);
   /// Whether a node with this key is split (or kept) at the pixel threshold.
   bool IsWanted(float key) const
   {
     return key >= 0.0f && (key > this->PixelThreshold || this->PixelThreshold <= 0.0);
   }
   /// Conservative, cheap: true only when Wanted(v) is false (whatever the culling).
-  inline bool SurelyUnwanted(const Node& node) const;
+  bool SurelyUnwanted(const Node& node) const;
 
   // The front (ViewDependentRefinementFront.cxx).
   void Split(uint32_t v);
@@ -309,12 +309,12 @@ private:
   /// Splits v and, first, every split it needs. Returns false when blocked.
   bool ForceSplit(uint32_t v);
   /// No display vertex needs v (and v is a leaf, the last child of its parent).
-  inline bool CanMerge(uint32_t v) const;
+  bool CanMerge(uint32_t v) const;
   /// First inactive vertex whose split v needs, v itself when none; UINT32_MAX
   /// when blocked. Resumes the scan at (stage, index), 0 at first.
   uint32_t NextRequirement(uint32_t v, uint8_t& stage, uint32_t& index) const;
-  inline void PrefetchOperation(uint32_t v) const; // what Split(v) or Merge(v) reads
-  inline uint32_t NextChild(uint32_t w) const;
+  void PrefetchOperation(uint32_t v) const; // what Split(v) or Merge(v) reads
+  uint32_t NextChild(uint32_t w) const;
   uint32_t LastActiveChild(uint32_t w) const;
   void AddDisplay(uint32_t t);
   void RemoveDisplay(uint32_t t);

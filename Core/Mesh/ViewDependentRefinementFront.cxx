@@ -337,4 +337,129 @@ void ViewDependentRefinement::Merge(uint32_t v)
     this->Touched[v] = this->TouchFrame; // (so not offered as u's candidate again)
   }
 }
+double ViewDependentRefinement::Priority(uint32_t v) const
+{
+  const uint32_t slot = this->Link[v].Slot;
+  return slot != vdr::None ? this->Evaluate(this->Nodes[slot]) : 0.0; // a base vertex has no event
+}
+
+void ViewDependentRefinement::Doze(Candidate& e, const Sleep& sleep) const
+{
+  e.WakeAt = this->Odometer + sleep.Wake;
+  e.FactorUntil = this->Odometer + sleep.FactorRadius;
+  e.Factor = sleep.Factor;
+}
+
+double ViewDependentRefinement::KeyBound(const Node& node, float factor) const
+{
+  // Evaluate()'s projected error with the current eye over a factor the
+  // node's cannot be below, widened by 1e-6 (rounding): >= its key.
+  const double dx = node.Center[0] - this->EyeX;
+  const double dy = node.Center[1] - this->EyeY;
+  const double dz = node.Center[2] - this->EyeZ;
+  const double dist = std::sqrt(dx * dx + dy * dy + dz * dz);
+  const double r = node.Radius;
+  if (!(dist > r) || !(factor > 0.0f))
+  {
+    return std::numeric_limits<double>::infinity();
+  }
+  const double nearPlane = this->NearPlane();
+  return node.Error * this->PixelsPerUnit / std::max(dist - r, nearPlane) / factor * (1.0 + 1e-6);
+}
+
+bool ViewDependentRefinement::SurelyUnwanted(const Node& node) const
+{
+  // Wanted(v) is false when even the smallest threshold factor leaves the
+  // projected error below the threshold, whatever the culling: Priority() is
+  // projected / factor with projected = Error * PixelsPerUnit / max(dist - r,
+  // near) (perspective). Decided without a square root, against the
+  // threshold shrunk by a relative 1e-6, far more than the rounding of
+  // Priority() and of its float key, so that this never contradicts Wanted().
+  if (!(this->MinimumFactor > 0.0) || !(this->PixelThreshold > 0.0))
+  {
+    return false;
+  }
+
+  const double error = node.Error;
+  if (!(error > 0.0))
+  {
+    return true; // priority 0 or culled
+  }
+  // projected / factor <= tau' <=> Error * PixelsPerUnit / (MinimumFactor tau') <= max(dist - r, near)
+  const double reach = error * this->UnwantedScale;
+  if (this->View.Parallel)
+  {
+    return reach <= 1.0;
+  }
+  const double r = node.Radius;
+  const double nearPlane = this->NearPlane();
+  if (reach <= nearPlane)
+  {
+    return true;
+  }
+  if (reach < 1e-4 * r)
+  {
+    return false; // dist - r would cancel too much in Priority() for this margin
+  }
+  const double dx = node.Center[0] - this->EyeX;
+  const double dy = node.Center[1] - this->EyeY;
+  const double dz = node.Center[2] - this->EyeZ;
+  const double limit = reach + r; // dist >= reach + r
+  return dx * dx + dy * dy + dz * dz >= limit * limit;
+}
+
+float ViewDependentRefinement::Key(uint32_t v)
+{
+  Links& l = this->Link[v];
+  if (l.KeyFrame != this->Frame)
+  {
+    l.KeyFrame = this->Frame;
+    l.Key = static_cast<float>(this->Priority(v));
+  }
+  return l.Key;
+}
+
+bool ViewDependentRefinement::Wanted(uint32_t v)
+{
+  const Links& l = this->Link[v];
+  if (l.KeyFrame != this->Frame && l.Slot != vdr::None && this->SurelyUnwanted(this->Nodes[l.Slot]))
+  {
+    return false; // cheaper than Key() (not cached: asked about again rarely)
+  }
+  return this->IsWanted(this->Key(v));
+}
+
+uint32_t ViewDependentRefinement::NextChild(uint32_t w) const
+{
+  const Links& l = this->Link[w];
+  const uint32_t i = l.ChildBegin + l.ActiveChildren;
+  return i < l.ChildEnd ? this->Children[i] : vdr::None;
+}
+
+bool ViewDependentRefinement::CanMerge(uint32_t v) const
+{
+  // O(1): whatever needs v is counted by Split() and Merge() (Holds).
+  return v >= this->B && this->Active[v] && this->Holds[v] == 0;
+}
+
+void ViewDependentRefinement::PrefetchOperation(uint32_t v) const
+{
+  // What Split(v) or Merge(v) will read at random, all reachable from v's
+  // record: fetched together instead of one miss after the other.
+  const Links& l = this->Link[v];
+  TIMECRITICAL_PREFETCH(&this->Link[l.Parent]);
+  TIMECRITICAL_PREFETCH(this->Needs.data() + l.NeedBegin);
+  TIMECRITICAL_PREFETCH(this->StarSlots.data() + l.StarBegin);
+  TIMECRITICAL_PREFETCH(this->DisplayPos.data() + l.BlockBegin);
+  TIMECRITICAL_PREFETCH(this->BirthCorners.data() + 3 * size_t(l.BlockBegin));
+  if (l.Slot != vdr::None)
+  {
+    TIMECRITICAL_PREFETCH(&this->Nodes[l.Slot]);
+  }
+  if (l.SplitPos != vdr::None)
+  {
+    TIMECRITICAL_PREFETCH(&this->SplitList[l.SplitPos]);
+  }
+}
+
 }
