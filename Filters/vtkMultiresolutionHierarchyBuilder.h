@@ -41,6 +41,10 @@
 #include "vtkSmartPointer.h" // for vtkSmartPointer
 
 class vtkPolyData;
+namespace timecritical
+{
+struct LeafBuildResult;
+}
 
 #include <map>    // for std::map
 #include <memory> // for std::unique_ptr
@@ -99,11 +103,8 @@ private:
   vtkSmartPointer<vtkPolyData> Build(
     vtkPolyData* leaf, unsigned int leafIndex, double progressBase, double progressSpan);
 
-  void ForwardProgress(vtkObject* caller, unsigned long, void*);
-  void ForwardMessage(vtkObject* caller, unsigned long event, void* callData);
-  unsigned int CurrentLeaf = 0;
-  double ProgressBase = 0.0;
-  double ProgressSpan = 0.0;
+  /// A build's errors and warnings, as this filter's, naming the leaf.
+  void ReportMessages(const timecritical::LeafBuildResult& built, unsigned int leafIndex);
 
   struct Internals;
   std::unique_ptr<Internals> Internal;
