@@ -124,6 +124,8 @@ struct vtkTimeCriticalRenderer::Internals
   unsigned long StartTag = 0, EndTag = 0;
   Clock::time_point FrameStart;
   bool FrameStartValid = false;
+  Clock::time_point DrawingEnd; // MarkDrawingFinished() in the current frame
+  bool DrawingEndValid = false;
   bool FramePending = false; // this renderer drew in the window's current frame
   std::array<double, FeatureCount> Features{};
 
@@ -269,6 +271,7 @@ vtkStandardNewMacro(vtkTimeCriticalRenderer);
 
 vtkTimeCriticalRenderer::vtkTimeCriticalRenderer()
   : MeasuredFrameTime(NaN)
+  , MeasuredDrawingTime(NaN)
   , Internal(new Internals)
 {
   this->Internal->SetCoefficientFloors(false);
@@ -711,6 +714,23 @@ void vtkTimeCriticalRenderer::OnWindowStart()
   this->Internal->FrameStart = Clock::now();
   this->Internal->FrameStartValid = true;
   this->Internal->FramePending = false;
+  this->Internal->DrawingEndValid = false;
+}
+
+void vtkTimeCriticalRenderer::MarkDrawingFinished()
+{
+  this->Internal->DrawingEnd = Clock::now();
+  this->Internal->DrawingEndValid = true;
+}
+
+void vtkTimeCriticalRenderer::SetCompositingTime(double seconds)
+{
+  if (!(seconds >= 0.0) || !std::isfinite(seconds))
+  {
+    vtkErrorMacro("SetCompositingTime(" << seconds << "): must be finite and >= 0 seconds");
+    return;
+  }
+  this->CompositingTime = seconds; // render state, as the resolutions: no Modified()
 }
 
 void vtkTimeCriticalRenderer::OnWindowEnd()
@@ -723,6 +743,12 @@ void vtkTimeCriticalRenderer::OnWindowEnd()
   in.FramePending = false;
   in.FrameStartValid = false;
   this->MeasuredFrameTime = Seconds(in.FrameStart, Clock::now());
+  // The model learns this renderer's own drawing: where the frame goes on
+  // after it (compositing, and waiting for other processes there), up to the
+  // drawing's end.
+  this->MeasuredDrawingTime =
+    in.DrawingEndValid ? Seconds(in.FrameStart, in.DrawingEnd) : this->MeasuredFrameTime;
+  in.DrawingEndValid = false;
   // A frame that calibrated took the hidden renders' time too: the user
   // waited for it, but it says nothing about the model.
   const bool calibrated = in.PendingCalibrated;
@@ -730,7 +756,7 @@ void vtkTimeCriticalRenderer::OnWindowEnd()
   if (this->OnlineCalibration && !calibrated)
   {
     (in.PendingStill ? in.StillCorrector : in.Corrector)
-      .Update(in.RawPrediction, this->MeasuredFrameTime);
+      .Update(in.RawPrediction, this->MeasuredDrawingTime);
     // The coefficients learn from the frames they plan. Still frames all
     // have the same features (everything in full): a run of them (ParaView
     // draws one after every interaction, a scripted path may draw hundreds)
@@ -740,7 +766,7 @@ void vtkTimeCriticalRenderer::OnWindowEnd()
     // real one. Their own correction above still follows them.
     // The fronts' refinement time is measured, not modelled by the
     // features: the model learns the drawing alone.
-    const double drawing = this->MeasuredFrameTime - this->RefinementTime;
+    const double drawing = this->MeasuredDrawingTime - this->RefinementTime;
     if (in.PendingStill && in.UsingDefaults)
     {
       this->ScaleDefaultCoefficients(drawing);
@@ -1138,8 +1164,8 @@ void vtkTimeCriticalRenderer::ChooseResolutions(bool still)
   }
   timecritical::FrameCostModel::FrameLoad load = in.Load;
   load.DrawCalls += mapperCalls;
-  const double fixed =
-    correction * (in.Model.FixedTime(load, in.TotalPixels) + fixedFronts) + in.RefinementEstimate;
+  const double fixed = correction * (in.Model.FixedTime(load, in.TotalPixels) + fixedFronts) +
+    in.RefinementEstimate + this->CompositingTime;
   // Time-limited budget fronts: at most the limit per mapper this frame.
   for (const auto& entry : in.Actors)
   {
@@ -1183,7 +1209,8 @@ void vtkTimeCriticalRenderer::ChooseResolutions(bool still)
     still ? &in.FullResolution : in.GetPolicy(this->Policy);
   const timecritical::PolicyResult result = policy->Select(input, in.Chosen.data());
   this->PredictedFrameTime = result.PredictedFrameTime;
-  in.RawPrediction = result.PredictedFrameTime / correction;
+  // What the model predicts of the drawing (compositing is measured apart).
+  in.RawPrediction = (result.PredictedFrameTime - this->CompositingTime) / correction;
   this->FixedFrameTime = fixed;
   this->OptimizationTime = result.Seconds;
   this->OptimizationIterations = result.Iterations;
@@ -1457,6 +1484,8 @@ void vtkTimeCriticalRenderer::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "RefinementTime: " << this->RefinementTime << "\n";
   os << indent << "PredictedFrameTime: " << this->PredictedFrameTime << "\n";
   os << indent << "MeasuredFrameTime: " << this->MeasuredFrameTime << "\n";
+  os << indent << "MeasuredDrawingTime: " << this->MeasuredDrawingTime << "\n";
+  os << indent << "CompositingTime: " << this->CompositingTime << "\n";
   os << indent << "OptimizationTime: " << this->OptimizationTime << "\n";
   os << indent << "OptimizationIterations: " << this->OptimizationIterations << "\n";
   os << indent << "TrianglesDrawn: " << this->TrianglesDrawn << "\n";

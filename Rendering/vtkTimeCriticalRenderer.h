@@ -310,7 +310,31 @@ public:
   ///@}
 
   ///@{
+  /**
+   * Seconds of every frame spent after this renderer's drawing, in parallel
+   * compositing for instance: the optimizer plans the drawing for the target
+   * minus this time (part of the fixed time). Such a frame should have its
+   * drawing's end marked (MarkDrawingFinished, done by
+   * vtkTimeCriticalDrawingPass), so that the cost model learns the drawing
+   * alone. vtkPVTimeCriticalRenderView sets it under MPI from the ranks'
+   * measurements. >= 0; default 0.
+   */
+  void SetCompositingTime(double seconds);
+  vtkGetMacro(CompositingTime, double);
+  ///@}
+
+  /**
+   * Marks the end of this frame's drawing (called by
+   * vtkTimeCriticalDrawingPass once the drawing is complete). In a frame so
+   * marked the cost model learns from the time from the frame's start to
+   * this mark (MeasuredDrawingTime) instead of the whole frame.
+   */
+  void MarkDrawingFinished();
+
+  ///@{
   /// Statistics of the last frame.
+  /// The last frame's drawing: up to MarkDrawingFinished() where it was marked, else the whole frame.
+  vtkGetMacro(MeasuredDrawingTime, double);
   vtkGetMacro(PredictedFrameTime, double);   ///< still frames too (their own correction)
   vtkGetMacro(FixedFrameTime, double);       ///< t_fixed of the prediction
   vtkGetMacro(SafetyMargin, double);         ///< k sigma kept free of the target (s)
@@ -435,6 +459,8 @@ protected:
   double FixedFrameTime = 0.0;
   double SafetyMargin = 0.0;
   double MeasuredFrameTime;
+  double MeasuredDrawingTime;
+  double CompositingTime = 0.0;
   double OptimizationTime = 0.0;
   double HeuristicsTime = 0.0;
   int OptimizationIterations = 0;

@@ -39,6 +39,10 @@ EXEMPT = {
     "MergeTreeErrorOptions": "options struct of the MergeTreeAttributes functions (TestMergeTreeAttributes)",
     "RefinementView": "input struct of ViewDependentRefinement: camera and thresholds (TestViewDependentRefinement)",
     "RefinementStatistics": "result struct of ViewDependentRefinement (TestViewDependentRefinement)",
+    "LeafBuildMessage": "a message of BuildLeafHierarchy (LeafHierarchyBuild.h), reported by "
+                        "vtkMultiresolutionHierarchyBuilder (TestvtkMultiresolutionHierarchyBuilder)",
+    "LeafBuildResult": "result struct of BuildLeafHierarchy (LeafHierarchyBuild.h; "
+                       "TestvtkMultiresolutionHierarchyBuilder)",
     "SettingCheck": "result struct of the Check*() functions of RefinementSettings.h (TestRefinementSettings)",
     "Tri": "the collapse engine's triangle: corners and flags, with two one-line lookups "
            "(CornerOf, Has); used throughout CollapseEngine (TestCollapseEngine, TestFanGroups)",

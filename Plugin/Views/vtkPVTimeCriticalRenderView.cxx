@@ -6,7 +6,10 @@
 #include "vtkActor.h"
 #include "vtkActorCollection.h"
 #include "vtkCollectionIterator.h"
+#include "vtkCameraPass.h"
 #include "vtkDataRepresentation.h"
+#include "vtkIceTCompositePass.h"
+#include "vtkImageProcessingPass.h"
 #include "vtkMultiProcessController.h"
 #include "vtkMultiresolutionPolyDataMapper.h"
 #include "vtkObjectFactory.h"
@@ -343,6 +346,11 @@ void vtkPVTimeCriticalRenderView::Render(bool interactive, bool skip_rendering)
   {
     this->StatisticsActor->SetInput(this->GetStatisticsText().c_str());
   }
+  vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
+  if (controller && controller->GetNumberOfProcesses() > 1)
+  {
+    this->InstallDrawingPass();
+  }
   this->Superclass::Render(interactive, skip_rendering);
   this->GatherRankStatistics();
   // Known while rendering (the session is active then), used afterwards.
@@ -356,7 +364,9 @@ void vtkPVTimeCriticalRenderView::Render(bool interactive, bool skip_rendering)
 //------------------------------------------------------------------------------
 namespace
 {
-constexpr int RankStatisticsFields = 5;
+constexpr int RankStatisticsFields = 6;
+/// Weight of the newest frame in the smoothed compositing time.
+constexpr double CompositingSmoothing = 0.3;
 }
 
 void vtkPVTimeCriticalRenderView::GatherRankStatistics()
@@ -369,7 +379,8 @@ void vtkPVTimeCriticalRenderView::GatherRankStatistics()
   const double mine[RankStatisticsFields] = { renderer->GetMeasuredFrameTime(),
     renderer->GetPredictedFrameTime(), renderer->GetLastTargetFrameTime(),
     static_cast<double>(renderer->GetObjectTrianglesDrawn()),
-    renderer->GetFixedFrameTime() + renderer->GetSafetyMargin() };
+    renderer->GetFixedFrameTime() + renderer->GetSafetyMargin(),
+    renderer->GetMeasuredDrawingTime() };
   vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
   const int ranks = controller ? controller->GetNumberOfProcesses() : 1;
   if (ranks > 1 && !this->GetUseDistributedRenderingForRender())
@@ -385,6 +396,10 @@ void vtkPVTimeCriticalRenderView::GatherRankStatistics()
   {
     std::copy(mine, mine + RankStatisticsFields, this->RankStatistics.begin());
   }
+  if (ranks > 1)
+  {
+    this->UpdateCompositingTime(ranks);
+  }
   double slowest = 0.0;
   for (int rank = 0; rank < ranks; ++rank)
   {
@@ -392,6 +407,59 @@ void vtkPVTimeCriticalRenderView::GatherRankStatistics()
     slowest = std::isfinite(rankTime) ? std::max(slowest, rankTime) : slowest;
   }
   TimeCriticalStatisticsText::SetRankSummary(renderer, ranks, slowest);
+}
+
+void vtkPVTimeCriticalRenderView::UpdateCompositingTime(int ranks)
+{
+  // After its drawing, a rank composites, and waits there for the slowest
+  // drawer; that one does not wait, so the least time any rank spent after
+  // its drawing is the compositing itself.
+  double least = std::numeric_limits<double>::infinity();
+  for (int rank = 0; rank < ranks; ++rank)
+  {
+    const double after = this->GetRankMeasuredFrameTime(rank) - this->GetRankDrawingTime(rank);
+    least = std::isfinite(after) && after >= 0.0 ? std::min(least, after) : least;
+  }
+  if (!std::isfinite(least))
+  {
+    return;
+  }
+  this->CompositingTime = this->CompositingTime > 0.0
+    ? (1.0 - CompositingSmoothing) * this->CompositingTime + CompositingSmoothing * least
+    : least;
+  if (vtkTimeCriticalRenderer* renderer = this->GetTimeCriticalRenderer())
+  {
+    renderer->SetCompositingTime(this->CompositingTime);
+  }
+}
+
+void vtkPVTimeCriticalRenderView::InstallDrawingPass()
+{
+  // ParaView composites through an IceT pass behind the renderer's camera
+  // pass (behind an image-processing pass where there is one); the IceT
+  // pass delegates the drawing. The drawing pass goes between the two, again
+  // whenever ParaView has replaced the delegate.
+  vtkRenderPass* pass = this->GetRenderer()->GetPass();
+  if (auto* processing = vtkImageProcessingPass::SafeDownCast(pass))
+  {
+    pass = processing->GetDelegatePass();
+  }
+  if (auto* camera = vtkCameraPass::SafeDownCast(pass))
+  {
+    pass = camera->GetDelegatePass();
+  }
+  auto* icet = vtkIceTCompositePass::SafeDownCast(pass);
+  if (!icet || icet->GetRenderPass() == this->DrawingPass.GetPointer())
+  {
+    return;
+  }
+  this->DrawingPass->SetDelegatePass(icet->GetRenderPass());
+  icet->SetRenderPass(this->DrawingPass);
+}
+
+double vtkPVTimeCriticalRenderView::GetRankDrawingTime(int rank)
+{
+  return this->GetRankStatistic(rank, 5);
 }
 
 int vtkPVTimeCriticalRenderView::GetNumberOfRanks()
@@ -526,5 +594,6 @@ void vtkPVTimeCriticalRenderView::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ColorByResolution: " << this->ColorByResolution << "\n";
   os << indent << "FullResolutionStillRenders: " << this->FullResolutionStillRenders << "\n";
   os << indent << "ShowStatistics: " << this->ShowStatistics << "\n";
+  os << indent << "CompositingTime: " << this->CompositingTime << "\n";
   os << indent << "TimeCriticalRenderer: " << this->GetTimeCriticalRenderer() << "\n";
 }

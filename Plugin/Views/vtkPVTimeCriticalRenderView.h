@@ -40,6 +40,7 @@
 
 #include "vtkNew.h"       // for vtkNew
 #include "vtkTextActor.h"   // for vtkNew<vtkTextActor>
+#include "vtkTimeCriticalDrawingPass.h" // for vtkNew<vtkTimeCriticalDrawingPass>
 #include "vtkWeakPointer.h" // for vtkWeakPointer
 
 #include <string> // for std::string
@@ -122,7 +123,9 @@ public:
    * Per-rank statistics of the last distributed render (every rank's
    * renderer plans its own objects): its measured time (of the frame before,
    * as GetMeasuredFrameTime()), predicted time, target, fixed part of the
-   * prediction with the safety margin, and triangles drawn.
+   * prediction with the safety margin, triangles drawn, and the time of its
+   * own drawing (of the frame before, without the compositing that follows;
+   * the whole frame where it was not measured apart).
    * Gathered on every rank after each render that all ranks take part in;
    * with one process, rank 0 is this one. NaN or -1 for a bad rank.
    */
@@ -132,7 +135,17 @@ public:
   double GetRankTargetFrameTime(int rank);
   double GetRankFixedFrameTime(int rank);
   vtkIdType GetRankTrianglesDrawn(int rank);
+  double GetRankDrawingTime(int rank);
   ///@}
+
+  /**
+   * With several ranks: the time a frame spends compositing after the
+   * drawing, as planned for by every rank's renderer
+   * (vtkTimeCriticalRenderer::SetCompositingTime). Estimated from the rank
+   * that waits least (the slowest drawer, whose time after its drawing is
+   * compositing alone), smoothed over frames. 0 with one rank.
+   */
+  vtkGetMacro(CompositingTime, double);
 
   ///@{
   /**
@@ -154,6 +167,8 @@ protected:
   void Render(bool interactive, bool skip_rendering) override;
   void AddRepresentationInternal(vtkDataRepresentation* rep) override;
   void GatherRankStatistics();
+  void InstallDrawingPass();
+  void UpdateCompositingTime(int ranks);
   void FetchServerStatistics();
   double GetRankStatistic(int rank, int field);
 
@@ -161,7 +176,9 @@ protected:
   bool FullResolutionStillRenders = true;
   bool ShowStatistics = false;
   bool WarnedAboutOtherRepresentations = false;
-  std::vector<double> RankStatistics; // per rank: measured, predicted, target, triangles, fixed
+  std::vector<double> RankStatistics; // per rank: measured, predicted, target, triangles, fixed, drawing
+  double CompositingTime = 0.0;
+  vtkNew<vtkTimeCriticalDrawingPass> DrawingPass;
   std::string ServerStatisticsText;   // a client's copy of the server's statistics
   bool RendersOnServer = false;       // a client of a separate server (as of the last render)
   vtkWeakPointer<vtkSMProxy> ViewProxy; // a client's proxy of this view, found once

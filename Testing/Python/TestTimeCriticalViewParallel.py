@@ -80,6 +80,28 @@ print("ranks: %d, objects on rank 0: %d, triangles on rank 0: %d"
       % (ranks, renderer.GetNumberOfObjects(), renderer.GetObjectTrianglesDrawn()))
 
 
+def check_balance(full, drawn, had_room):
+    """Alike pieces get alike budgets: each rank's model learns its own drawing,
+    not its wait for the others in the composite (which made the rank that
+    composites last draw a hundredth of the others' triangles)."""
+    medians = [statistics.median(d) for d in drawn]
+    print("triangles drawn over the last 10 frames (median per rank): %s; full: %s; "
+          "compositing %.1f ms" % (medians, full, 1000.0 * server.GetCompositingTime()))
+    if min(full) < 0.8 * max(full):
+        print("pieces differ in size: balance not checked")
+        return
+    if not had_room:
+        # A machine so loaded that the fixed cost alone fills the target
+        # leaves every rank at its coarsest levels: nothing to balance.
+        print("no frame had room for the objects: balance not checked")
+        return
+    if min(medians) < 0.5 * max(medians):
+        fail("ranks with alike pieces drew %s triangles: one less than half another's"
+             % medians)
+    if not server.GetCompositingTime() > 0.0:
+        fail("no compositing time estimated with %d ranks" % ranks)
+
+
 def check_against_one_rank():
     """Full resolution on N ranks is the one-rank picture; every rank plans its budget."""
     if not os.path.isfile(REFERENCE):
@@ -108,6 +130,8 @@ def check_against_one_rank():
     view.FullResolutionAtRest = 0
     camera = GetActiveCamera()
     measured = [[] for _ in range(ranks)]
+    drawing = [[] for _ in range(ranks)]
+    drawn = [[] for _ in range(ranks)]  # triangles of the last ten frames
     planned = [[] for _ in range(ranks)]
     for frame in range(40):
         camera.Azimuth(2.0)
@@ -130,8 +154,11 @@ def check_against_one_rank():
                 planned[r].append(predicted <= target * 1.0001)
                 if not 0 < triangles < full[r]:
                     fail("rank %d drew %d triangles of %d" % (r, triangles, full[r]))
+            if frame >= 30:
+                drawn[r].append(triangles)
             if frame > 0:  # the measured time is that of the frame before
                 measured[r].append(server.GetRankMeasuredFrameTime(r))
+                drawing[r].append(server.GetRankDrawingTime(r))
     # Without start-up calibration (it cannot run on one rank alone) each
     # rank's cost model learns from its first frames; after that every plan
     # with room for the objects fits the target.
@@ -141,12 +168,16 @@ def check_against_one_rank():
               % (r, len(planned[r]), 40 - WARM_UP, WARM_UP, sum(planned[r])))
         if not all(planned[r]):
             fail("rank %d: a plan with room for the objects exceeded the target" % r)
-    summary = {"ranks": ranks, "target_ms": target_ms, "per_rank": []}
+    check_balance(full, drawn, any(planned))
+    summary = {"ranks": ranks, "target_ms": target_ms, "per_rank": [],
+               "compositing_ms": 1000.0 * server.GetCompositingTime()}
     for r in range(ranks):
         times = [t * 1000.0 for t in measured[r]]
         entry = {"rank": r, "median_ms": statistics.median(times), "max_ms": max(times),
                  "within_110_percent": sum(t <= 1.1 * target_ms for t in times) / len(times),
-                 "full_resolution_triangles": full[r]}
+                 "full_resolution_triangles": full[r],
+                 "drawing_median_ms": 1000.0 * statistics.median(drawing[r]),
+                 "triangles_median_last_10": statistics.median(drawn[r])}
         summary["per_rank"].append(entry)
         print("rank %d: measured median %.1f ms, max %.1f ms, %.0f%% of frames within %.0f ms "
               "(target %.0f ms); %d triangles at full resolution"
