@@ -1415,6 +1415,15 @@ void vtkTimeCriticalRenderer::RunCalibration()
   in.FramePending = false;
   camera->SetViewAngle(savedAngle);
   camera->SetParallelScale(savedScale);
+  if (samples == 0)
+  {
+    // Nothing in view at any zoom (a script's first render comes before its
+    // camera is reset, for instance): try again in a later frame.
+    this->CalibrationAttempted = false;
+    this->CalibrationRenders += renders;
+    this->CalibrationTime = Seconds(calibrationStart, Clock::now());
+    return;
+  }
   // The fixed per-frame work outside DeviceRender() (swap, window events) is
   // not in these samples; online refinement adds it within a few frames.
   // The fit is bounded by the physical floors only: it is the measurement

@@ -13,6 +13,7 @@
 #include "vtkActor.h"
 #include "vtkCamera.h"
 #include "vtkCommand.h"
+#include "vtkCullerCollection.h"
 #include "vtkMultiBlockDataSet.h"
 #include "vtkNew.h"
 #include "vtkPoints.h"
@@ -581,6 +582,31 @@ TEST(TimeCriticalRenderer, CalibratesInTheStartUpFrameNotInTheFirstInteraction)
   full.Window->Render();
   EXPECT_FALSE(full.Renderer->GetCalibrated());
   EXPECT_EQ(full.Renderer->GetCalibrationRenders(), 0);
+}
+
+TEST(TimeCriticalRenderer, CalibrationWaitsUntilSomethingIsInView)
+{
+  // A script's first render may come before its camera is reset (ParaView's
+  // simple.Render does so): nothing in view is no reason to give the
+  // calibration up, nor to warn; the first frame with objects in view runs it.
+  Scene scene(SphereGrid(3));
+  scene.Renderer->GetCullers()->RemoveAllItems(); // as ParaView: the objects stay in the frame
+  vtkNew<vtkTest::ErrorObserver> warnings;
+  scene.Renderer->AddObserver(vtkCommand::WarningEvent, warnings);
+  vtkCamera* camera = scene.Renderer->GetActiveCamera();
+  double focal[3], position[3];
+  camera->GetFocalPoint(focal);
+  camera->GetPosition(position);
+  camera->SetFocalPoint(focal[0] + 1000.0, focal[1], focal[2]); // far from every object
+  camera->SetPosition(position[0] + 1000.0, position[1], position[2]);
+  scene.Window->Render();
+  EXPECT_EQ(scene.Renderer->GetNumberOfCulledObjects(), 9);
+  EXPECT_FALSE(scene.Renderer->GetCalibrated());
+  EXPECT_FALSE(warnings->GetWarning()) << warnings->GetWarningMessage();
+  scene.Renderer->ResetCamera();
+  scene.Window->Render();
+  EXPECT_TRUE(scene.Renderer->GetCalibrated());
+  EXPECT_GT(scene.Renderer->GetCalibrationRenders(), 0);
 }
 
 TEST(TimeCriticalRenderer, EffectiveTargetFollowsTheDesiredUpdateRate)
