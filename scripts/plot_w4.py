@@ -56,10 +56,13 @@ def plot_times(ax, runs, target_ms):
             if any(not math.isnan(v) for v in y):
                 ax.plot(x, y, style, color="#ff7f0e", marker="^", markersize=3, linewidth=0.9,
                         label="%s %s: hierarchy in use" % (run["label"], phase))
-        phase = run["changes"][0]["phase"]
-        x, y = series(run, phase, "reader_s", 1000.0)
-        ax.plot(x, y, ":", color=color, linewidth=0.9, label="%s %s: %s alone" % (
-            run["label"], phase, "contour filter" if run["variant"] == "edit" else "reader"))
+        # The reader's time (left out at the first show: showing the data read it).
+        changes = [c for c in run["changes"] if c["phase"] == run["changes"][0]["phase"]
+                   and not c["initial"]]
+        ax.plot([c["index"] for c in changes], [1000.0 * c["reader_s"] for c in changes], ":",
+                color=color, linewidth=0.9, label="%s %s: %s alone" % (
+                    run["label"], run["changes"][0]["phase"],
+                    "contour filter" if run["variant"] == "edit" else "reader"))
         initial = [c for c in run["changes"] if c["initial"]]
         ax.plot([c["index"] for c in initial], [1000.0 * c["first_frame_s"] for c in initial],
                 "o", markersize=7, markerfacecolor="none", color=color)

@@ -667,7 +667,9 @@ if __name__ == "__main__":
     try:
         main()
     except SystemExit as stop:  # pvbatch must not leave through sys.exit(): X errors
-        print(stop, file=sys.stderr)
+        code = stop.code if isinstance(stop.code, int) else (0 if stop.code is None else 1)
+        if not isinstance(stop.code, int) and stop.code is not None:
+            print(stop.code, file=sys.stderr)
         sys.stderr.flush()
         sys.stdout.flush()
-        os._exit(1)
+        os._exit(code)

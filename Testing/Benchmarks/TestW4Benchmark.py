@@ -150,6 +150,8 @@ def main():
                          stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
     print(run.stdout)
     check(run.returncode == 0, "w4_benchmark.py exited with %d" % run.returncode)
+    for sign in ("ERR|", "Traceback"):  # warnings: the builder drops degenerate triangles
+        check(sign not in run.stdout, "pvbatch printed %r" % sign)
     printed = run.stdout.split("Goals (Time-Critical Render View):")
     check(len(printed) == 2, "no goals printed")
     verdicts = [line.split()[0] for line in printed[1].splitlines() if line.strip()][:len(GOALS)]
