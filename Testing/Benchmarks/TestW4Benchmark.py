@@ -22,7 +22,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 SCRIPTS = os.path.normpath(os.path.join(HERE, "..", "..", "scripts"))
 CHANGE_FIELDS = ("phase", "index", "initial", "reader_s", "first_frame_s", "first_frame_total_s",
                  "frames", "rss_mb", "peak_rss_mb", "hierarchy_in_use_s",
-                 "frames_until_hierarchy", "builds", "cache_hits", "counters")
+                 "frames_until_hierarchy", "builds", "hierarchies_swapped", "cache_hits", "counters")
 TC_FRAME_FIELDS = ("wall_ms", "measured_ms", "predicted_ms", "triangles", "still", "objects",
                    "toms", "pending", "hierarchy_in_use")
 SUMMARY_FIELDS = ("changes", "reader_s", "first_frame_s", "hierarchy_in_use_s", "interactive_ms",
@@ -80,8 +80,11 @@ def check_change(run, change, orbit, blocks):
     check(change["hierarchy_in_use_s"] is not None, where + ": the hierarchy never came into use")
     check(change["hierarchy_in_use_s"] >= change["first_frame_s"] - 1e-6,
           where + ": hierarchy in use before the first frame ended")
-    check(0 <= change["builds"] <= 2 * objects, "%s: %r builds of %d objects" % (
-        where, change["builds"], objects))
+    if change["builds"] is None:  # background builds, not countable from Python
+        check(change["hierarchies_swapped"] is not None, where + ": neither builds nor swaps")
+    else:
+        check(0 <= change["builds"] <= 2 * objects, "%s: %r builds of %d objects" % (
+            where, change["builds"], objects))
     check(0 <= change["cache_hits"] <= objects, "%s: %r cache hits" % (where, change["cache_hits"]))
     check("builder.Builds" in change["counters"], where + ": builder counters missing")
 
@@ -108,7 +111,8 @@ def check_runs(data, orbit, blocks):
             for field in SUMMARY_FIELDS:
                 check(field in summary, "%s/%s %s summary: no %s" % (variant, view, phase, field))
         if view == "timecritical" and variant != "edit":
-            built = sum(c["builds"] for c in run["changes"] if c["phase"] == "loop1")
+            built = sum(c["builds"] if c["builds"] is not None else c["hierarchies_swapped"]
+                        for c in run["changes"] if c["phase"] == "loop1")
             check(built >= steps, "%s: loop 1 built %d leaves over %d new steps" % (
                 variant, built, steps))
 
