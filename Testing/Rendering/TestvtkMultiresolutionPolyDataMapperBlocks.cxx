@@ -132,6 +132,30 @@ TEST(MultiresolutionMapperBlocks, MatchCompositePolyDataMapper2)
   }
 }
 
+TEST(MultiresolutionMapperBlocks, TranslucentBlockInFrontOfOpaqueOne)
+{
+  // The translucent block comes first in the one index buffer: drawn in the
+  // opaque pass it would hide the opaque block behind it.
+  vtkNew<vtkMultiBlockDataSet> input;
+  input->SetNumberOfBlocks(2);
+  input->SetBlock(0, MakeTOM(0.6, 40, 30, 0.0, 0.0, 1.0));
+  input->SetBlock(1, MakeTOM(0.5, 40, 30, 0.2, 0.0, 0.0));
+  vtkNew<vtkMultiresolutionPolyDataMapper> mapper;
+  mapper->SetInputDataObject(input);
+  mapper->SetBlockOpacity(1, 0.4);
+  mapper->SetBlockColor(2, 0.2, 0.4, 1.0);
+  Scene scene(mapper);
+  PrepareScene(scene);
+  vtkNew<vtkCompositePolyDataMapper2> composite;
+  composite->SetInputDataObject(input);
+  composite->SetCompositeDataDisplayAttributes(mapper->GetCompositeDataDisplayAttributes());
+  Scene reference(composite);
+  PrepareScene(reference);
+  ExpectSameImages(scene, reference, "Blocks_translucent_in_front");
+  const auto center = PixelAt(scene, 0.2);
+  EXPECT_GT(center[2], center[0] + 40) << "the opaque block is hidden by the translucent one";
+}
+
 TEST(MultiresolutionMapperBlocks, ChangesRewriteOnlyTheirBlock)
 {
   BlockScene data;
