@@ -164,6 +164,17 @@ class vtkTimeCriticalSurfaceRepresentationTests(ViewTests, unittest.TestCase):
         self.assertEqual(mapper.GetObjectRenderedTriangles(0), 0)
         self.assertTrue(mapper.HasOpaqueGeometry())
         self.assertTrue(mapper.HasTranslucentPolygonalGeometry())
+        # A new block colour rewrites that block's vertex colours: no build,
+        # no vertex buffer rebuilt.
+        surface = rep.GetClientSideObject().GetActiveRepresentation()
+        builds = surface.GetHierarchyBuilder().GetNumberOfBuilds()
+        vertex_builds = mapper.GetVertexBufferBuildCount()
+        rep.BlockColors = ["/Root/Sphere2", "0.2", "1", "0.2"]
+        view.StillRender()
+        self.assertEqual(surface.GetHierarchyBuilder().GetNumberOfBuilds(), builds)
+        self.assertEqual(mapper.GetVertexBufferBuildCount(), vertex_builds)
+        greener = screenshot(view, OUT, "blocks-green.png")
+        self.assertGreater(np.count_nonzero(greener[:, :, 1].astype(int) - image[:, :, 1] > 60), 500)
         # The attributes made the difference: without them, another image.
         rep.BlockSelectors = ["/"]
         rep.BlockColors = []
