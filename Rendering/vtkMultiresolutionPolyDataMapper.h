@@ -71,10 +71,12 @@
  * no budget on it); a block color replaces the scalar coloring of that
  * block; a block opacity below 1 makes the block translucent. Colors and
  * opacities are drawn as one RGBA color per vertex (per cell with cell
- * scalars) in the same draw call: the vertex shader drops translucent
- * objects from the opaque pass and opaque ones from the translucent pass.
+ * scalars) in the same draw call: the vertex shader (the fragment shader
+ * with cell colors) drops translucent objects from the opaque pass and
+ * opaque ones from the translucent pass.
  * Attributes are render state: a change rewrites the colors of the blocks
  * that changed (a visibility change their index slots) and nothing else.
+ * Block pickability is not applied.
  *
  * Hardware selection (vtkHardwareSelector, ParaView's area selection)
  * reports each leaf's flat index (composite input) and the leaf's own cell

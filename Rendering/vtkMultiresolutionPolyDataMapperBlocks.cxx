@@ -469,14 +469,35 @@ void vtkMultiresolutionPolyDataMapper::UploadBlockColors()
 void vtkMultiresolutionPolyDataMapper::ReplaceShaderValues(
   std::map<vtkShader::Type, vtkShader*> shaders, vtkRenderer* ren, vtkActor* act)
 {
+  // blockPass keeps translucent objects out of the opaque pass (0) and
+  // opaque ones out of the translucent pass (1); 2 draws all.
+  Internals& in = *this->Internal;
+  const bool blocks = in.BlockMode && !this->ColorByResolution;
+  vtkShader* fragment = shaders[vtkShader::Fragment];
+  if (blocks && in.BlockCells && this->HaveCellScalars && fragment)
+  {
+    // Cell colors: by each fragment's opacity, after the color code (which
+    // the superclass writes at the Color tag, before the Edges one).
+    std::string source = fragment->GetSource();
+    vtkShaderProgram::Substitute(
+      source, "//VTK::Color::Dec", "//VTK::Color::Dec\nuniform int blockPass;", false);
+    vtkShaderProgram::Substitute(source, "//VTK::Edges::Impl",
+      "//VTK::Edges::Impl\n"
+      "  if ((blockPass == 0 && opacity < 1.0) || (blockPass == 1 && opacity >= 1.0))\n"
+      "    {\n"
+      "    discard;\n"
+      "    }\n",
+      false);
+    fragment->SetSource(source);
+  }
   this->Superclass::ReplaceShaderValues(shaders, ren, act);
-  // Block colors per vertex: a vertex of alpha 0 (hidden block) is never
-  // drawn, and blockPass keeps translucent objects out of the opaque pass (0)
-  // and opaque ones out of the translucent pass (1); 2 draws all. Moving all
-  // of a primitive's vertices outside the clip volume drops it before
-  // rasterization. A block's vertices all share its opacity class.
+  // Point colors: by the vertex's block alpha, in the vertex shader, which
+  // drops a primitive before rasterization by moving all its vertices
+  // outside the clip volume (a block's vertices share its opacity class); a
+  // vertex of alpha 0 (hidden block: its vertices, lines and strips) is
+  // never drawn.
   vtkShader* vertex = shaders[vtkShader::Vertex];
-  if (!this->Internal->BlockMode || this->ColorByResolution || !vertex)
+  if (!blocks || !vertex)
   {
     return;
   }

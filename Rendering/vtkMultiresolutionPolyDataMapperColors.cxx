@@ -287,9 +287,9 @@ bool vtkMultiresolutionPolyDataMapper::HasOpaqueGeometry()
     return !this->HasTranslucentPolygonalGeometry();
   }
   // Translucent blocks beside opaque ones: the opaque ones are drawn in the
-  // opaque pass when the vertex shader can tell them apart (per-vertex block
-  // colors over opaque scalars; see ReplaceShaderValues).
-  return in.AnyOpaqueBlock && !in.BlockCells && !this->HasTranslucentScalars();
+  // opaque pass when the shaders can tell them apart (block colors over
+  // opaque scalars; see ReplaceShaderValues).
+  return in.AnyOpaqueBlock && !this->HasTranslucentScalars();
 }
 
 bool vtkMultiresolutionPolyDataMapper::HasTranslucentScalars()

@@ -154,6 +154,14 @@ TEST(MultiresolutionMapperBlocks, TranslucentBlockInFrontOfOpaqueOne)
   ExpectSameImages(scene, reference, "Blocks_translucent_in_front");
   const auto center = PixelAt(scene, 0.2);
   EXPECT_GT(center[2], center[0] + 40) << "the opaque block is hidden by the translucent one";
+
+  // Over cell scalars (colors per cell: the fragment shader splits the passes).
+  mapper->SetBlockColor(2, 1.0, 1.0, 1.0);
+  ConfigureColoring(mapper, true);
+  ConfigureColoring(composite, true);
+  ExpectSameImages(scene, reference, "Blocks_translucent_in_front_cells");
+  EXPECT_TRUE(mapper->HasOpaqueGeometry());
+  EXPECT_TRUE(mapper->HasTranslucentPolygonalGeometry());
 }
 
 TEST(MultiresolutionMapperBlocks, ChangesRewriteOnlyTheirBlock)
@@ -282,6 +290,13 @@ TEST(MultiresolutionMapperBlocks, LinesOfHiddenBlocksAndCellColors)
   compositeScene.SetCamera(0.6, 0.0, 5.5, 0.6, 0.0, 0.0);
   compositeScene.Actor->GetProperty()->DeepCopy(scene.Actor->GetProperty());
   ExpectSameImages(scene, compositeScene, "Blocks_cell_colors");
+  // A change in place: the cell colors' texels, nothing rebuilt.
+  const vtkIdType vertexBuilds = mapper->GetVertexBufferBuildCount();
+  mapper->SetBlockColor(1, 1.0, 0.8, 0.1);
+  mapper->SetBlockOpacity(2, 0.0); // fully transparent: nothing of it drawn
+  EXPECT_TRUE(mapper->HasOpaqueGeometry()); // the sphere stays in the opaque pass
+  ExpectSameImages(scene, compositeScene, "Blocks_cell_colors_changed");
+  EXPECT_EQ(mapper->GetVertexBufferBuildCount(), vertexBuilds);
 }
 
 TEST(MultiresolutionMapperBlocks, BadValuesAreErrors)
