@@ -2,7 +2,7 @@
 // vtkMultiresolutionPolyDataMapper: construction, graphics resources, bounds,
 // the render of one piece and PrintSelf. The other jobs are in
 // vtkMultiresolutionPolyDataMapper{Objects,Fronts,VertexBuffers,IndexBuffer,
-// IndexSlots,Colors,Selection}.cxx, around the state of
+// IndexSlots,Colors,Blocks,Selection}.cxx, around the state of
 // vtkMultiresolutionPolyDataMapperInternals.h.
 #include "vtkMultiresolutionPolyDataMapperInternals.h"
 

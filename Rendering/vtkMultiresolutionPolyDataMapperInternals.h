@@ -6,7 +6,8 @@
  * the vertex buffers appended from the leaves (VertexBuffers.cxx), the index
  * buffer's per-object slots (IndexBuffer.cxx, IndexSlots.cxx, laid out by
  * timecritical::IndexSlotAllocator), scalar colors, cell textures and the
- * resolution map (Colors.cxx), and hardware selection (Selection.cxx).
+ * resolution map (Colors.cxx), block attributes (Blocks.cxx) and hardware
+ * selection (Selection.cxx).
  */
 #ifndef vtkMultiresolutionPolyDataMapperInternals_h
 #define vtkMultiresolutionPolyDataMapperInternals_h
