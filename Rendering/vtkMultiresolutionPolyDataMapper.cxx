@@ -2,7 +2,7 @@
 // vtkMultiresolutionPolyDataMapper: construction, graphics resources, bounds,
 // the render of one piece and PrintSelf. The other jobs are in
 // vtkMultiresolutionPolyDataMapper{Objects,Fronts,VertexBuffers,IndexBuffer,
-// IndexSlots,Colors,Selection}.cxx, around the state of
+// IndexSlots,Colors,Blocks,Selection}.cxx, around the state of
 // vtkMultiresolutionPolyDataMapperInternals.h.
 #include "vtkMultiresolutionPolyDataMapperInternals.h"
 
@@ -136,9 +136,9 @@ void vtkMultiresolutionPolyDataMapper::ComputeBounds()
   bool first = true;
   for (const auto& object : in.Objects)
   {
-    if (!vtkMath::AreBoundsInitialized(object.Bounds))
+    if (!object.Visible || !vtkMath::AreBoundsInitialized(object.Bounds))
     {
-      continue;
+      continue; // hidden blocks do not count, as in vtkCompositePolyDataMapper2
     }
     for (int k = 0; k < 3; ++k)
     {
@@ -204,6 +204,7 @@ void vtkMultiresolutionPolyDataMapper::RenderPiece(vtkRenderer* ren, vtkActor* a
   this->NumberOfRewrittenObjects = 0;
   this->IndexBytesUploaded = 0;
   this->CellDataBytesUploaded = 0;
+  this->ColorBytesUploaded = 0;
   this->IndexUpdateTime = 0.0;
   for (auto& object : in.Objects)
   {
@@ -225,7 +226,9 @@ void vtkMultiresolutionPolyDataMapper::RenderPiece(vtkRenderer* ren, vtkActor* a
     }
   }
   this->UpdateCameraShiftScale(ren, act);
+  this->PrepareBlockColors(act);
   this->RenderPieceStart(ren, act);
+  this->UploadBlockColors();
   this->RenderPieceDraw(ren, act);
   this->RenderPieceFinish(ren, act);
 

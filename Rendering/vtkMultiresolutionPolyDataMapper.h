@@ -64,6 +64,20 @@
  * per mapper; their vertices, lines and strips are always drawn in full (in
  * extra draw calls, whatever their resolution) and edge flags are ignored.
  *
+ * Block attributes (vtkCompositeDataDisplayAttributes, as ParaView's
+ * Multiblock Inspector sets them) are honoured as vtkCompositePolyDataMapper2
+ * does, with attributes of a parent block applying to its children: a hidden
+ * block is culled whatever its resolution (and vtkTimeCriticalRenderer spends
+ * no budget on it); a block color replaces the scalar coloring of that
+ * block; a block opacity below 1 makes the block translucent. Colors and
+ * opacities are drawn as one RGBA color per vertex (per cell with cell
+ * scalars) in the same draw call: the vertex shader (the fragment shader
+ * with cell colors) drops translucent objects from the opaque pass and
+ * opaque ones from the translucent pass.
+ * Attributes are render state: a change rewrites the colors of the blocks
+ * that changed (a visibility change their index slots) and nothing else.
+ * Block pickability is not applied.
+ *
  * Hardware selection (vtkHardwareSelector, ParaView's area selection)
  * reports each leaf's flat index (composite input) and the leaf's own cell
  * and point ids of what the last frame drew, at any resolution and for
@@ -94,11 +108,13 @@
 #include "TimeCriticalRenderingModule.h" // for export macro
 #include "vtkOpenGLPolyDataMapper.h"
 
+#include <map>     // for ReplaceShaderValues
 #include <memory>  // for std::unique_ptr
 #include <string>  // for UploadLeafBuffers
 #include <utility> // for UploadLeafBuffers
 #include <vector>  // for ProcessSelectorPixelBuffers
 
+class vtkCompositeDataDisplayAttributes;
 class vtkStateStorage;
 
 class TIMECRITICALRENDERING_EXPORT vtkMultiresolutionPolyDataMapper : public vtkOpenGLPolyDataMapper
@@ -172,6 +188,25 @@ public:
 
   /// Degenerate primitives (slot padding and holes) drawn by the last render.
   vtkGetMacro(NumberOfPaddingPrimitives, vtkIdType);
+
+  ///@{
+  /**
+   * Block attributes of composite input (visibility, color, opacity), keyed
+   * by the input's data objects as in vtkCompositePolyDataMapper2; none by
+   * default. Changes apply at the next render without rebuilding buffers.
+   * The flat-index setters create the attributes when there are none and
+   * report an error for a flat index that names no block of the input.
+   */
+  void SetCompositeDataDisplayAttributes(vtkCompositeDataDisplayAttributes* attributes);
+  vtkCompositeDataDisplayAttributes* GetCompositeDataDisplayAttributes();
+  void SetBlockVisibility(unsigned int flatIndex, bool visible);
+  void SetBlockColor(unsigned int flatIndex, double r, double g, double b);
+  void SetBlockOpacity(unsigned int flatIndex, double opacity);
+  bool GetObjectVisibility(vtkIdType i) const; ///< false: a hidden block
+  ///@}
+
+  /// Bytes of vertex colors rewritten in place by the last render (resolution map, block colors).
+  vtkGetMacro(ColorBytesUploaded, vtkIdType);
 
   /// Full layouts of the index buffer so far (rebuilds and compactions).
   vtkIdType GetIndexBufferRelayoutCount() const;
@@ -299,6 +334,7 @@ public:
   vtkUnsignedCharArray* MapScalars(double alpha) override;
   vtkUnsignedCharArray* MapScalars(double alpha, int& cellFlag) override;
   bool HasTranslucentPolygonalGeometry() override;
+  bool HasOpaqueGeometry() override;
   ///@}
 
   /// First point of object i in the merged vertex buffer (indices drawn for it are offset by this).
@@ -334,6 +370,13 @@ protected:
     vtkRenderer* ren, vtkActor* act, vtkCellArray* prims[4], int representation) override;
 
   ///@{
+  /// Block opacities: the vertex shader keeps each object in its pass (Blocks.cxx).
+  void ReplaceShaderValues(
+    std::map<vtkShader::Type, vtkShader*> shaders, vtkRenderer* ren, vtkActor* act) override;
+  void SetMapperShaderParameters(vtkOpenGLHelper& cellBO, vtkRenderer* ren, vtkActor* act) override;
+  ///@}
+
+  ///@{
   /**
    * Hardware selection: the cell passes draw primitive ids of the index
    * buffer's slots and the composite pass one value for all leaves; these
@@ -364,6 +407,7 @@ protected:
   vtkIdType NumberOfRewrittenObjects = 0;
   vtkIdType IndexBytesUploaded = 0;
   vtkIdType CellDataBytesUploaded = 0;
+  vtkIdType ColorBytesUploaded = 0;
   double IndexUpdateTime = 0.0;
   vtkIdType NumberOfPaddingPrimitives = 0;
   double IndexSlack = 0.1;
@@ -408,6 +452,15 @@ private:
   void UploadCellTexels(size_t begin, size_t end);
   void UpdateResolutionColor(vtkIdType i);
   void UploadResolutionColors();
+  void UploadDirtyColors(vtkUnsignedCharArray* colors);
+  vtkUnsignedCharArray* MapScalarColors(double alpha, int& cellFlag);
+  bool HasTranslucentScalars();
+  // Block attributes (Blocks.cxx).
+  void UpdateBlockAttributes();
+  void PrepareBlockColors(vtkActor* act);
+  vtkUnsignedCharArray* MapBlockColors(double alpha, int& cellFlag);
+  void WriteBlockColors(vtkIdType i);
+  void UploadBlockColors();
 
   struct Internals;
   std::unique_ptr<Internals> Internal;

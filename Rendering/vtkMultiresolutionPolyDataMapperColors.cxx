@@ -79,16 +79,29 @@ vtkUnsignedCharArray* vtkMultiresolutionPolyDataMapper::MapScalars(double alpha,
     }
     return this->Colors;
   }
-  if (in.ColorsAreResolutionMap)
+  if (in.ColorsAreResolutionMap || (in.BlockColors && this->Colors == in.BlockColors))
   {
-    // Leaving the resolution map: never let the superclass reuse its colors.
+    // Leaving the resolution map or the block colors: never let the
+    // superclass reuse them as its colors.
     if (this->Colors)
     {
       this->Colors->UnRegister(this);
       this->Colors = nullptr;
     }
     in.ColorsAreResolutionMap = false;
+    in.ColorsValid = false;
   }
+  if (in.BlockMode)
+  {
+    return this->MapBlockColors(alpha, cellFlag);
+  }
+  return this->MapScalarColors(alpha, cellFlag);
+}
+
+vtkUnsignedCharArray* vtkMultiresolutionPolyDataMapper::MapScalarColors(double alpha, int& cellFlag)
+{
+  Internals& in = *this->Internal;
+  cellFlag = 0;
   // Only arrays common to all leaves color (as vtkAppendPolyData keeps them):
   // the skeleton has those. One leaf maps its own array, without a copy.
   vtkAbstractArray* common = in.Skeleton ? vtkAbstractMapper::GetAbstractScalars(in.Skeleton,
@@ -258,8 +271,31 @@ vtkUnsignedCharArray* vtkMultiresolutionPolyDataMapper::MapLeafScalars(
 
 bool vtkMultiresolutionPolyDataMapper::HasTranslucentPolygonalGeometry()
 {
+  if (this->ColorByResolution)
+  {
+    return false;
+  }
+  const Internals& in = *this->Internal;
+  return (in.BlockMode && in.AnyTranslucentBlock) || this->HasTranslucentScalars();
+}
+
+bool vtkMultiresolutionPolyDataMapper::HasOpaqueGeometry()
+{
+  const Internals& in = *this->Internal;
+  if (this->ColorByResolution || !in.BlockMode || !in.AnyTranslucentBlock)
+  {
+    return !this->HasTranslucentPolygonalGeometry();
+  }
+  // Translucent blocks beside opaque ones: the opaque ones are drawn in the
+  // opaque pass when the shaders can tell them apart (block colors over
+  // opaque scalars; see ReplaceShaderValues).
+  return in.AnyOpaqueBlock && !this->HasTranslucentScalars();
+}
+
+bool vtkMultiresolutionPolyDataMapper::HasTranslucentScalars()
+{
   Internals& in = *this->Internal;
-  if (this->ColorByResolution || !this->ScalarVisibility || !in.Skeleton)
+  if (!this->ScalarVisibility || !in.Skeleton)
   {
     return false;
   }
@@ -511,6 +547,12 @@ void vtkMultiresolutionPolyDataMapper::UploadCellTexels(size_t begin, size_t end
 
 void vtkMultiresolutionPolyDataMapper::UploadResolutionColors()
 {
+  this->UploadDirtyColors(this->Internal->ResolutionColors);
+}
+
+void vtkMultiresolutionPolyDataMapper::UploadDirtyColors(vtkUnsignedCharArray* colors)
+{
+  // The resolution map's or the block colors' vertex colors.
   Internals& in = *this->Internal;
   vtkOpenGLVertexBufferObject* vbo = this->VBOs->GetVBO("scalarColor");
   const bool inPlace = vbo &&
@@ -518,11 +560,11 @@ void vtkMultiresolutionPolyDataMapper::UploadResolutionColors()
     vbo->GetStride() == 4 && vbo->GetDataType() == VTK_UNSIGNED_CHAR;
   if (vbo && !inPlace)
   {
-    vbo->UploadDataArray(in.ResolutionColors);
+    vbo->UploadDataArray(colors);
   }
   else if (inPlace)
   {
-    // Only the vertices of objects whose grey level changed, one write per
+    // Only the vertices of objects whose colors changed, one write per
     // run of consecutive such objects. The array's MTime is left alone: the
     // buffer holds its values.
     vbo->Bind();
@@ -541,7 +583,8 @@ void vtkMultiresolutionPolyDataMapper::UploadResolutionColors()
         end = in.Objects[i].VertexOffset + in.Objects[i].NumberOfVertices;
       }
       glBufferSubData(GL_ARRAY_BUFFER, static_cast<GLintptr>(4 * begin),
-        static_cast<GLsizeiptr>(4 * (end - begin)), in.ResolutionColors->GetPointer(4 * begin));
+        static_cast<GLsizeiptr>(4 * (end - begin)), colors->GetPointer(4 * begin));
+      this->ColorBytesUploaded += 4 * (end - begin);
     }
     vbo->Release();
   }

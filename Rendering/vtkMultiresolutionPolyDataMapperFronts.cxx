@@ -147,7 +147,7 @@ void vtkMultiresolutionPolyDataMapper::RefineObjects(vtkRenderer* ren, vtkActor*
   {
     object.Splits = object.Merges = 0;
     object.RefinementTime = 0.0;
-    any = any || (object.Refinement && object.Resolution > 0.0);
+    any = any || (object.Refinement && object.Visible && object.Resolution > 0.0);
   }
   if (!any || !this->ViewDependentRefinement)
   {
@@ -161,14 +161,14 @@ void vtkMultiresolutionPolyDataMapper::RefineObjects(vtkRenderer* ren, vtkActor*
   int fronts = 0;
   for (const auto& object : in.Objects)
   {
-    fronts += object.Refinement && object.Resolution > 0.0;
+    fronts += object.Refinement && object.Visible && object.Resolution > 0.0;
   }
   const double limit = this->RefinementTimeLimit / std::max(fronts, 1);
 
   bool changed = false;
   for (auto& object : in.Objects)
   {
-    if (!object.Refinement || !(object.Resolution > 0.0))
+    if (!object.Refinement || !object.Visible || !(object.Resolution > 0.0))
     {
       continue; // culled objects keep their front for when they come back
     }

@@ -43,9 +43,9 @@ Content vtkMultiresolutionPolyDataMapper::Internals::Describe(
   const Object& object, bool viewDependent) const
 {
   Content content;
-  if (!(object.Resolution > 0.0))
+  if (!object.Visible || !(object.Resolution > 0.0))
   {
-    content.Kind = ContentKind::Culled;
+    content.Kind = ContentKind::Culled; // a hidden block too (block attributes)
   }
   else if (object.Refinement && viewDependent)
   {

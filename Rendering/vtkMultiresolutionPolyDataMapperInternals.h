@@ -6,7 +6,8 @@
  * the vertex buffers appended from the leaves (VertexBuffers.cxx), the index
  * buffer's per-object slots (IndexBuffer.cxx, IndexSlots.cxx, laid out by
  * timecritical::IndexSlotAllocator), scalar colors, cell textures and the
- * resolution map (Colors.cxx), and hardware selection (Selection.cxx).
+ * resolution map (Colors.cxx), block attributes (Blocks.cxx) and hardware
+ * selection (Selection.cxx).
  */
 #ifndef vtkMultiresolutionPolyDataMapperInternals_h
 #define vtkMultiresolutionPolyDataMapperInternals_h
@@ -18,6 +19,7 @@
 #include "TOMTraversal.h"
 #include "ViewDependentRefinement.h"
 
+#include "vtkCompositeDataDisplayAttributes.h"
 #include "vtkNew.h"
 #include "vtkProperty.h" // for VTK_SURFACE
 #include "vtkUnsignedCharArray.h"
@@ -161,6 +163,13 @@ struct vtkMultiresolutionPolyDataMapper::Internals
     // Its slot in the index buffer is Slots.GetSlot(its index).
     Content Written;        // what the slot holds
     bool Rewritten = false; // by the last render
+    // Block attributes (vtkCompositeDataDisplayAttributes, inherited from
+    // parent blocks; Blocks.cxx). An invisible object is culled.
+    bool Visible = true;
+    bool HasBlockColor = false;
+    bool HasBlockOpacity = false;
+    double BlockColor[3] = { 1.0, 1.0, 1.0 };
+    double BlockOpacity = 1.0;
   };
 
   std::vector<Object> Objects;
@@ -230,6 +239,26 @@ struct vtkMultiresolutionPolyDataMapper::Internals
   std::vector<unsigned char> CellNormalBytes;
 
   vtkSmartPointer<vtkUnsignedCharArray> ResolutionColors;
+  // Block attributes (Blocks.cxx): applied for these attributes (MTime) and
+  // objects (the skeleton of their read, held so that its address is not reused).
+  vtkSmartPointer<vtkCompositeDataDisplayAttributes> BlockAttributes;
+  vtkMTimeType BlockAttributesTime = 0;
+  vtkSmartPointer<vtkPolyData> BlockSkeleton;
+  // Block mode: some object has a block color or opacity (or hides vertices,
+  // lines or strips), so the mapper draws BlockColors, one RGBA per vertex
+  // (or per cell with cell scalars): the scalar colors (BaseColors) or the
+  // property's color, replaced by block colors, alpha times block opacity,
+  // 0 for invisible objects. Rewritten per object when attributes change.
+  bool BlockMode = false;
+  bool BlockCells = false;        // BlockColors are per cell
+  bool BlockColorsStale = true;   // rebuild all of BlockColors at the next map
+  bool BlockColorsDirty = false;  // objects' ColorDirty ranges not on the GPU yet
+  bool AnyTranslucentBlock = false;
+  bool AnyOpaqueBlock = false;
+  vtkSmartPointer<vtkUnsignedCharArray> BlockColors;
+  vtkSmartPointer<vtkUnsignedCharArray> BaseColors;
+  vtkMTimeType BlockBaseTime = 0;
+  double BlockPropertyColor[4] = { -1.0, -1.0, -1.0, -1.0 };
   bool ColorsAreResolutionMap = false; // this->Colors is a resolution map
   // The leaves' mapped scalars (MapLeafScalars): when, and for what.
   vtkTimeStamp ColorsTime;
@@ -318,6 +347,9 @@ struct vtkMultiresolutionPolyDataMapper::Internals
   const Object* ObjectOfVertex(vtkIdType vertex) const;
   const Object* ObjectOfOtherCell(vtkIdType cell, vtkIdType& leafCell) const;
   const Object* ObjectOfCell(vtkIdType cell) const; ///< cell in leaf order (Object::CellOffset)
+
+  // Block attributes (Blocks.cxx): the walk that gives each object its block's.
+  struct BlockWalk;
 
   // Index slots (IndexSlots.cxx).
   Content Describe(const Object& object, bool viewDependent) const;

@@ -58,6 +58,7 @@ void vtkMultiresolutionPolyDataMapper::UpdateObjects()
   {
     this->ReadObjects(input);
   }
+  this->UpdateBlockAttributes();
 }
 
 //------------------------------------------------------------------------------

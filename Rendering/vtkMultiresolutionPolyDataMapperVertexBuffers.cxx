@@ -140,6 +140,10 @@ bool vtkMultiresolutionPolyDataMapper::PrepareColorsAndCellTextures(vtkRenderer*
   {
     this->HaveCellScalars = true;
   }
+  if (this->Internal->BlockMode && !this->ColorByResolution)
+  {
+    this->HaveCellScalars = this->Internal->BlockCells; // block colors say which
+  }
   const int representation = act->GetProperty()->GetRepresentation();
   const int interpolation = act->GetProperty()->GetInterpolation();
   const bool pointNormals =

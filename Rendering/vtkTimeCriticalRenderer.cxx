@@ -1049,7 +1049,9 @@ void vtkTimeCriticalRenderer::MeasureObjects()
       const std::size_t o = entry.First + i;
       const auto projection =
         ViewHeuristics::Project(in.ObjectToClip->GetData(), in.Bounds[o].data(), width, height);
-      in.Culled[o] = projection.Culled ? 1 : 0;
+      // Hidden blocks (block visibility) are culled: no budget is spent on them.
+      const bool hidden = !entry.Mapper->GetObjectVisibility(static_cast<vtkIdType>(i));
+      in.Culled[o] = projection.Culled || hidden ? 1 : 0;
       in.Pixels[o] = projection.Pixels;
       in.CenterX[o] = projection.CenterX;
       in.CenterY[o] = projection.CenterY;
@@ -1060,7 +1062,7 @@ void vtkTimeCriticalRenderer::MeasureObjects()
             history.CenterX[i], history.CenterY[i], projection.CenterX, projection.CenterY, dt))
         : 0.0;
       in.PreviousResolution[o] = known ? history.Resolution[i] : NaN;
-      if (projection.Culled)
+      if (in.Culled[o])
       {
         ++culled;
       }

@@ -2,6 +2,8 @@
 #include "vtkTimeCriticalSurfaceRepresentation.h"
 
 #include "vtkCommand.h"
+#include "vtkCompositeDataDisplayAttributes.h"
+#include "vtkDataObject.h"
 #include "vtkMultiresolutionHierarchyBuilder.h"
 #include "vtkMultiresolutionPolyDataMapper.h"
 #include "vtkObjectFactory.h"
@@ -19,6 +21,10 @@ vtkTimeCriticalSurfaceRepresentation::vtkTimeCriticalSurfaceRepresentation()
   mapper->SetSelection(this->Mapper->GetSelection());
   mapper->SetProcessIdArrayName("vtkProcessId");
   mapper->SetCompositeIdArrayName("vtkCompositeIndex");
+  // Block colors, opacities and visibilities (Multiblock Inspector), as the
+  // base class gives its vtkCompositePolyDataMapper2.
+  vtkNew<vtkCompositeDataDisplayAttributes> blockAttributes;
+  mapper->SetCompositeDataDisplayAttributes(blockAttributes);
   this->Mapper->Delete();
   this->Mapper = mapper;
   this->SetArrayIdNames(nullptr, nullptr);
@@ -72,9 +78,25 @@ vtkMultiresolutionPolyDataMapper* vtkTimeCriticalSurfaceRepresentation::GetMulti
 int vtkTimeCriticalSurfaceRepresentation::ProcessViewRequest(
   vtkInformationRequestKey* request_type, vtkInformation* inInfo, vtkInformation* outInfo)
 {
+  // The base class hands block attributes to a vtkCompositePolyDataMapper2
+  // only, and marks them applied whatever its mapper: whether they must be
+  // applied is decided before it runs, and they are given to our mapper after.
+  vtkDataObject* delivered = nullptr;
+  bool blockAttributes = false;
+  if (request_type == vtkPVView::REQUEST_RENDER())
+  {
+    delivered = vtkPVView::GetDeliveredPiece(inInfo, this);
+    blockAttributes = delivered &&
+      (this->BlockAttributeTime < delivered->GetMTime() || this->BlockAttrChanged);
+  }
   if (!this->Superclass::ProcessViewRequest(request_type, inInfo, outInfo))
   {
     return 0;
+  }
+  if (blockAttributes)
+  {
+    this->PopulateBlockAttributes(
+      this->GetMultiresolutionMapper()->GetCompositeDataDisplayAttributes(), delivered);
   }
   if (request_type == vtkPVView::REQUEST_UPDATE())
   {

@@ -23,10 +23,12 @@
  * gathered onto one rank nor redistributed): translucent surfaces whose
  * pieces interleave in depth are composited in rank order.
  *
- * ParaView's interactive LOD is not used (the view's budget replaces it);
- * block colours, block opacities and block visibilities of composite data
- * are not supported (vtkMultiresolutionPolyDataMapper draws all leaves with
- * the representation's colouring).
+ * ParaView's interactive LOD is not used (the view's budget replaces it).
+ * Block colours, block opacities and block visibilities of composite data
+ * (the Multiblock Inspector's) are given to the mapper as the Render View
+ * gives them to its composite mapper: a hidden block is culled and costs
+ * the view's budget nothing, a block colour replaces the colouring of that
+ * block, a translucent block is drawn in the translucent pass.
  *
  * @sa vtkPVTimeCriticalRenderView vtkTimeCriticalCompositeRepresentation
  */

@@ -3,7 +3,8 @@
 """vtkTimeCriticalSurfaceRepresentation, the surface of the Time-Critical Render
 View, through paraview.simple: multiblock and partitioned input as objects,
 TOM input reused, visibility and opacity, build progress, hierarchies built
-once and rebuilt on change, merge trees on request.
+once and rebuilt on change, merge trees on request, block colours, opacities
+and visibilities against a Render View.
 
 Runs under pvbatch (`pvbatch --force-offscreen-rendering TestvtkTimeCriticalSurfaceRepresentation.py`).
 
@@ -116,6 +117,77 @@ class vtkTimeCriticalSurfaceRepresentationTests(ViewTests, unittest.TestCase):
         Render(view)
         self.assertEqual(builder.GetNumberOfBuilds(), 3)
         self.assertTrue(view.GetClientSideObject().GetRenderer().GetObjectIsViewDependent(0))
+
+    def block_images(self, name, scalars):
+        """Screenshots of four spheres with a hidden, a coloured and a
+        translucent block (the Multiblock Inspector's properties) in the
+        Time-Critical Render View at rest and in a Render View; the
+        Time-Critical view's representation."""
+        spheres = [self.new(sphere(60, (2.5 * i, 0, 0))) for i in range(4)]
+        group = self.new(GroupDatasets(Input=spheres))
+        images = []
+        reps = []
+        views = [self.view(), self.new_view("RenderView")]
+        for view in views:
+            rep = self.new(Show(group, view))
+            reps.append(rep)
+            if scalars:
+                ColorBy(rep, ("POINTS", "Normals", "X"))
+            else:
+                rep.ColorArrayName = ["POINTS", ""]
+            rep.DiffuseColor = rep.AmbientColor = [0.85, 0.7, 0.45]
+            rep.BlockSelectors = ["/Root/Sphere2", "/Root/Sphere3", "/Root/Sphere4"]
+            rep.BlockColors = ["/Root/Sphere2", "1", "0.2", "0.2"]
+            rep.BlockOpacities = ["/Root/Sphere3", "0.5"]
+            Render(view)  # the first render resets the camera
+            view.CameraPosition = [3.75, 2.0, 14.0]
+            view.CameraFocalPoint = [3.75, 0.0, 0.0]
+            view.CameraViewUp = [0.0, 1.0, 0.0]
+            images.append(screenshot(view, OUT, "%s-%s.png" % (name, view.GetXMLName())))
+        return images, reps[0], views[0]
+
+    def assert_same_image(self, image, expected):
+        # The still-render comparison's tolerance (TestvtkPVTimeCriticalRenderView).
+        differing = np.count_nonzero(np.abs(image.astype(int) - expected.astype(int)).max(axis=2) > 8)
+        self.assertLess(differing, 0.002 * image.shape[0] * image.shape[1])
+
+    def test_block_colours_opacities_and_visibility_equal_a_render_view(self):
+        (image, expected), rep, view = self.block_images("blocks", scalars=False)
+        self.assert_same_image(image, expected)
+        renderer = view.GetClientSideObject().GetRenderer()
+        self.assertTrue(renderer.GetLastRenderWasStill())
+        self.assertEqual(renderer.GetNumberOfObjects(), 4)
+        self.assertEqual(renderer.GetNumberOfCulledObjects(), 1)  # the hidden block
+        mapper = rep.GetClientSideObject().GetActiveRepresentation().GetMultiresolutionMapper()
+        self.assertFalse(mapper.GetObjectVisibility(0))
+        self.assertTrue(all(mapper.GetObjectVisibility(i) for i in range(1, 4)))
+        self.assertEqual(mapper.GetObjectRenderedTriangles(0), 0)
+        self.assertTrue(mapper.HasOpaqueGeometry())
+        self.assertTrue(mapper.HasTranslucentPolygonalGeometry())
+        # A new block colour rewrites that block's vertex colours: no build,
+        # no vertex buffer rebuilt.
+        surface = rep.GetClientSideObject().GetActiveRepresentation()
+        builds = surface.GetHierarchyBuilder().GetNumberOfBuilds()
+        vertex_builds = mapper.GetVertexBufferBuildCount()
+        rep.BlockColors = ["/Root/Sphere2", "0.2", "1", "0.2"]
+        view.StillRender()
+        self.assertEqual(surface.GetHierarchyBuilder().GetNumberOfBuilds(), builds)
+        self.assertEqual(mapper.GetVertexBufferBuildCount(), vertex_builds)
+        greener = screenshot(view, OUT, "blocks-green.png")
+        self.assertGreater(np.count_nonzero(greener[:, :, 1].astype(int) - image[:, :, 1] > 60), 500)
+        # The attributes made the difference: without them, another image.
+        rep.BlockSelectors = ["/"]
+        rep.BlockColors = []
+        rep.BlockOpacities = []
+        plain = screenshot(view, OUT, "blocks-none.png")
+        differing = np.count_nonzero(np.abs(image.astype(int) - plain.astype(int)).max(axis=2) > 8)
+        self.assertGreater(differing, 0.02 * image.shape[0] * image.shape[1])
+        self.assertTrue(mapper.GetObjectVisibility(0))
+        self.assertFalse(mapper.HasTranslucentPolygonalGeometry())
+
+    def test_block_colours_over_scalar_colouring_equal_a_render_view(self):
+        (image, expected), _, _ = self.block_images("blocks-scalars", scalars=True)
+        self.assert_same_image(image, expected)
 
 
 if __name__ == "__main__":
