@@ -131,6 +131,8 @@ struct vtkTimeCriticalRenderer::Internals
 
   bool StillRequested = false;
   bool CalibrationRequested = false;
+  bool CameraWasReset = false;        // ResetCamera() ran at least once
+  bool CalibrationProvisional = false; // the automatic calibration ran before any camera reset
   double EffectiveTarget = 0.1; // target of the frame being planned (s), +inf for a still frame
 
   // Multiresolution actors of the frame and their objects.
@@ -853,6 +855,18 @@ bool vtkTimeCriticalRenderer::Calibrate()
   return this->Calibrated;
 }
 
+void vtkTimeCriticalRenderer::ResetCamera(const double bounds[6])
+{
+  this->Superclass::ResetCamera(bounds);
+  Internals& in = *this->Internal;
+  in.CameraWasReset = true;
+  if (in.CalibrationProvisional)
+  {
+    in.CalibrationProvisional = false;
+    in.CalibrationRequested = true; // again, in the next frame, at the view of the data
+  }
+}
+
 void vtkTimeCriticalRenderer::DeviceRender()
 {
   Internals& in = *this->Internal;
@@ -889,9 +903,11 @@ void vtkTimeCriticalRenderer::DeviceRender()
     (this->AutomaticCalibration && !this->Calibrated && !this->CalibrationAttempted &&
       this->Policy != FULL_RESOLUTION && !in.ObjectActor.empty()))
   {
+    const bool automatic = !in.CalibrationRequested;
     in.CalibrationRequested = false;
     this->RunCalibration();
     in.PendingCalibrated = true;
+    in.CalibrationProvisional = automatic && this->Calibrated && !in.CameraWasReset;
   }
   this->MeasureObjects();
   this->HeuristicsTime = Seconds(heuristicsStart, Clock::now());

@@ -199,6 +199,16 @@ public:
   /// Render the window once with every object at full resolution.
   void StillRender();
 
+  /**
+   * As vtkRenderer's; in addition, an automatic calibration made before the
+   * camera was ever reset (a script's first render, which ParaView's
+   * simple.Render draws before resetting the camera to the data, may see
+   * only a corner of the scene) runs again in the next frame, at the view of
+   * the data.
+   */
+  using Superclass::ResetCamera;
+  void ResetCamera(const double bounds[6]) override;
+
   ///@{
   /**
    * While on, every render is a still frame: every object at full

@@ -261,6 +261,7 @@ def run_view(args, scene_path, scene):
             view.InteractiveRender()
             wall = 1000.0 * (time.perf_counter() - begin)
             frames.append({"wall_ms": wall,
+                           "measured_ms": 1000.0 * renderer.GetMeasuredFrameTime(),
                            "predicted_ms": 1000.0 * renderer.GetPredictedFrameTime(),
                            "fixed_ms": 1000.0 * renderer.GetFixedFrameTime(),
                            "triangles": renderer.GetObjectTrianglesDrawn(),
@@ -310,6 +311,7 @@ def run_vtk(args, scene_path, scene):
             window.Render()
             wall = 1000.0 * (time.perf_counter() - begin)
             frames.append({"wall_ms": wall,
+                           "measured_ms": 1000.0 * renderer.GetMeasuredFrameTime(),
                            "predicted_ms": 1000.0 * renderer.GetPredictedFrameTime(),
                            "fixed_ms": 1000.0 * renderer.GetFixedFrameTime(),
                            "triangles": renderer.GetObjectTrianglesDrawn(),

@@ -609,6 +609,38 @@ TEST(TimeCriticalRenderer, CalibrationWaitsUntilSomethingIsInView)
   EXPECT_GT(scene.Renderer->GetCalibrationRenders(), 0);
 }
 
+TEST(TimeCriticalRenderer, CalibrationBeforeTheFirstCameraResetRunsAgainAfterIt)
+{
+  // ParaView's simple.Render draws its first frame before resetting the
+  // camera: a calibration of whatever that camera sees (here one object, up
+  // close) is provisional; the reset to the data calibrates again, once.
+  vtkNew<vtkRenderWindow> window;
+  vtkNew<vtkTimeCriticalRenderer> renderer;
+  vtkNew<vtkMultiresolutionPolyDataMapper> mapper;
+  vtkNew<vtkActor> actor;
+  mapper->SetInputDataObject(SphereGrid(3));
+  actor->SetMapper(mapper);
+  renderer->AddActor(actor);
+  window->SetOffScreenRendering(1);
+  window->SetSize(200, 200);
+  window->AddRenderer(renderer);
+  vtkCamera* camera = renderer->GetActiveCamera();
+  camera->SetPosition(0.0, 0.0, 4.0);
+  camera->SetFocalPoint(0.0, 0.0, 0.0);
+  window->Render();
+  ASSERT_TRUE(renderer->GetCalibrated());
+  const int first = renderer->GetCalibrationRenders();
+  window->Render();
+  EXPECT_EQ(renderer->GetCalibrationRenders(), first) << "no calibration without a reset";
+  renderer->ResetCamera();
+  window->Render();
+  const int second = renderer->GetCalibrationRenders();
+  EXPECT_GT(second, first) << "the reset to the data calibrates again";
+  renderer->ResetCamera();
+  window->Render();
+  EXPECT_EQ(renderer->GetCalibrationRenders(), second) << "only the first reset does";
+}
+
 TEST(TimeCriticalRenderer, EffectiveTargetFollowsTheDesiredUpdateRate)
 {
   Scene scene(SphereGrid(3));
