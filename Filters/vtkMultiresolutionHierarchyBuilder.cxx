@@ -38,12 +38,21 @@ double SurfaceCells(vtkPolyData* leaf)
 /**
  * Runs work(i) for every i < count on up to `threads` new threads, the next
  * index to whichever thread is free; the calling thread only waits, calling
- * poll() at least every 50 ms and whenever an item is done. When no thread
- * can be started the calling thread does the work itself.
+ * poll() at least every 50 ms and whenever an item is done. With one thread
+ * or one item, or when no thread can be started, the calling thread does the
+ * work itself.
  */
 void RunOnThreads(size_t count, unsigned int threads, const std::function<void(size_t)>& work,
   const std::function<void()>& poll)
 {
+  if (threads <= 1 || count <= 1)
+  {
+    for (size_t i = 0; i < count; ++i)
+    {
+      work(i);
+    }
+    return;
+  }
   std::atomic<size_t> next{ 0 };
   std::mutex mutex;
   std::condition_variable doneChanged;

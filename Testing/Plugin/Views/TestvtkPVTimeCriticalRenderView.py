@@ -94,8 +94,9 @@ class vtkPVTimeCriticalRenderViewTests(ViewTests, unittest.TestCase):
             other = self.view()
             self.assertEqual(other.GetClientSideObject().GetHierarchyCacheMemoryLimitMiB(), 64)
             self.assertEqual(other.GetClientSideObject().GetHierarchyCacheDirectory(), directory)
-            source = self.new(sphere(60))
+            source = self.new(sphere(61, (7, 0, 0)))  # content no other test shows
             self.new(Show(source, view))
+            view.ResetCamera()
             Render(view)
             files = [name for name in os.listdir(directory) if name.endswith(".vtp")]
             self.assertEqual(len(files), 1)
@@ -103,6 +104,7 @@ class vtkPVTimeCriticalRenderViewTests(ViewTests, unittest.TestCase):
             # built: a build would write its file again.
             os.remove(os.path.join(directory, files[0]))
             self.new(Show(source, other))
+            other.ResetCamera()
             Render(other)
             self.assertEqual(os.listdir(directory), [])
             self.assertGreater(leaf_mapper(other).GetObjectNumberOfTriangles(0), 0)
