@@ -59,9 +59,10 @@ public:
     if (event == vtkCommand::ErrorEvent && this->FirstError.empty())
     {
       this->FirstError = callData ? static_cast<const char*>(callData) : "error";
-      while (!this->FirstError.empty() && std::isspace(static_cast<unsigned char>(this->FirstError.back())))
+      std::string& text = this->FirstError;
+      while (!text.empty() && std::isspace(static_cast<unsigned char>(text.back())))
       {
-        this->FirstError.pop_back();
+        text.pop_back();
       }
     }
     this->Failed = this->Failed || event == vtkCommand::ErrorEvent;
@@ -285,7 +286,8 @@ vtkSmartPointer<vtkPolyData> ReadEntry(
   vtkSmartPointer<vtkPolyData> data = CopySharingArrays(read);
   // The reader names the cell arrays, which the builders leave unnamed (and
   // the content hash covers the names).
-  for (vtkCellArray* cells : { data->GetVerts(), data->GetLines(), data->GetPolys(), data->GetStrips() })
+  for (vtkCellArray* cells :
+    { data->GetVerts(), data->GetLines(), data->GetPolys(), data->GetStrips() })
   {
     if (cells)
     {

@@ -64,7 +64,8 @@ vtkSmartPointer<vtkPolyData> BuildMergeTree(vtkPolyData* input)
 /// A fresh directory under the test output directory.
 std::string ScratchDirectory(const std::string& name)
 {
-  const std::string path = std::string(TIMECRITICAL_TEST_OUTPUT_DIR) + "/HierarchyBuildCache-" + name;
+  const std::string path =
+    std::string(TIMECRITICAL_TEST_OUTPUT_DIR) + "/HierarchyBuildCache-" + name;
   vtksys::SystemTools::RemoveADirectory(path);
   vtksys::SystemTools::MakeDirectory(path);
   return path;

@@ -244,7 +244,8 @@ vtkSmartPointer<vtkPolyData> Step(double shift, int resolution = 16)
   return sphere;
 }
 
-vtkSmartPointer<vtkMultiBlockDataSet> Blocks(const std::vector<vtkSmartPointer<vtkPolyData>>& leaves)
+vtkSmartPointer<vtkMultiBlockDataSet> Blocks(
+  const std::vector<vtkSmartPointer<vtkPolyData>>& leaves)
 {
   auto blocks = vtkSmartPointer<vtkMultiBlockDataSet>::New();
   blocks->SetNumberOfBlocks(static_cast<unsigned int>(leaves.size()));
@@ -451,7 +452,8 @@ TEST_F(MultiresolutionHierarchyBuilder, ParallelBuildsEqualSerialBuildsBitForBit
     parallel->SetCache(parallelCache);
     serial->SetNumberOfThreads(1);
     parallel->SetNumberOfThreads(4);
-    for (vtkMultiresolutionHierarchyBuilder* builder : { serial.GetPointer(), parallel.GetPointer() })
+    for (vtkMultiresolutionHierarchyBuilder* builder :
+      { serial.GetPointer(), parallel.GetPointer() })
     {
       builder->SetHierarchy(hierarchy);
       builder->SetInputData(input);
@@ -567,7 +569,8 @@ TEST_F(MultiresolutionHierarchyBuilder, AnAbortCancelsThePendingBuilds)
     for (unsigned int i = 0; i < 6; ++i)
     {
       // A cancelled leaf passes as it came, never half built.
-      EXPECT_TRUE(Leaf(out, i) == leaves[i].GetPointer() || vtkTOMFieldData::HasTOMArrays(Leaf(out, i)));
+      EXPECT_TRUE(
+        Leaf(out, i) == leaves[i].GetPointer() || vtkTOMFieldData::HasTOMArrays(Leaf(out, i)));
     }
     // Cancelled builds are not cached: without the abort every leaf is built.
     EXPECT_EQ(cache->GetNumberOfEntries(), builder->GetNumberOfBuiltLeaves());
