@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkMultiresolutionHierarchyBuilder.h"
 
-#include "LeafContentHash.h"
 #include "LeafHierarchyBuild.h"
+#include "vtkHierarchyBuildCache.h"
 
 #include "vtkCompositeDataIterator.h"
 #include "vtkCompositeDataSet.h"
@@ -12,33 +12,130 @@
 #include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
 
-#include <cstdint>
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <exception>
+#include <functional>
 #include <map>
-#include <string>
-#include <vector>
+#include <mutex>
+#include <set>
+#include <thread>
 
 vtkStandardNewMacro(vtkMultiresolutionHierarchyBuilder);
 
 namespace
 {
+using Key = vtkHierarchyBuildCache::Key;
+
 /// The cells a build simplifies (0 for a leaf that is not polydata).
 double SurfaceCells(vtkPolyData* leaf)
 {
   return leaf ? static_cast<double>(leaf->GetNumberOfPolys() + leaf->GetNumberOfStrips()) : 0.0;
 }
+
+/**
+ * Runs work(i) for every i < count on up to `threads` new threads, the next
+ * index to whichever thread is free; the calling thread only waits, calling
+ * poll() at least every 50 ms and whenever an item is done. With one thread
+ * or one item, or when no thread can be started, the calling thread does the
+ * work itself.
+ */
+void RunOnThreads(size_t count, unsigned int threads, const std::function<void(size_t)>& work,
+  const std::function<void()>& poll)
+{
+  if (threads <= 1 || count <= 1)
+  {
+    for (size_t i = 0; i < count; ++i)
+    {
+      work(i);
+    }
+    return;
+  }
+  std::atomic<size_t> next{ 0 };
+  std::mutex mutex;
+  std::condition_variable doneChanged;
+  size_t done = 0;
+  auto worker = [&]() {
+    for (size_t i = next++; i < count; i = next++)
+    {
+      work(i);
+      {
+        std::lock_guard<std::mutex> lock(mutex);
+        ++done;
+      }
+      doneChanged.notify_one();
+    }
+  };
+  std::vector<std::thread> pool;
+  for (unsigned int t = 0; t < std::min<size_t>(threads, count); ++t)
+  {
+    try
+    {
+      pool.emplace_back(worker);
+    }
+    catch (const std::exception&) // out of threads: fewer workers
+    {
+      break;
+    }
+  }
+  if (pool.empty())
+  {
+    worker();
+  }
+  std::unique_lock<std::mutex> lock(mutex);
+  while (done < count)
+  {
+    doneChanged.wait_for(lock, std::chrono::milliseconds(50));
+    lock.unlock();
+    poll();
+    lock.lock();
+  }
+  lock.unlock();
+  for (std::thread& thread : pool)
+  {
+    thread.join();
+  }
+}
 } // namespace
 
-struct vtkMultiresolutionHierarchyBuilder::CacheEntry
+/// One polydata leaf of the input and what became of it.
+struct vtkMultiresolutionHierarchyBuilder::Leaf
 {
-  uint64_t InputHash = 0;              // HashLeaf() of the leaf Output was built from
-  vtkIdType InputCells = 0;            // and its cell count (a second check)
-  vtkSmartPointer<vtkPolyData> Output; // the build
-  int Hierarchy = 0;
+  vtkPolyData* Input = nullptr;
+  unsigned int Index = 0; // composite flat index (0 for polydata)
+  double Cells = 0.0;
+  bool NeedsHierarchy = false;
+  Key CacheKey;
+  int JobIndex = -1;        // the job that gives it its hierarchy
+  bool FirstOfJob = false;  // the leaf the job counts as built or loaded
+  vtkSmartPointer<vtkPolyData> Output;
+};
+
+/// One content to find in the cache or build (identical leaves share one).
+struct vtkMultiresolutionHierarchyBuilder::Job
+{
+  Key CacheKey;
+  vtkPolyData* Input = nullptr;
+  double Cells = 0.0;
+  enum Outcomes
+  {
+    NONE,   // rejected by the builder or cancelled: the leaf passes
+    MEMORY, // found in the cache's memory
+    DISK,   // read from the cache's directory
+    BUILT
+  } Outcome = NONE;
+  vtkSmartPointer<vtkPolyData> Output;
+  std::vector<timecritical::LeafBuildMessage> Messages; // the build's
+  std::vector<std::string> CacheWarnings;               // rejected or unwritable files
+  std::atomic<double> Fraction{ 0.0 };                  // written by the job's thread
 };
 
 struct vtkMultiresolutionHierarchyBuilder::Internals
 {
-  std::map<unsigned int, CacheEntry> Cache; // by composite flat index (0 for polydata)
+  vtkSmartPointer<vtkHierarchyBuildCache> Cache; // null: the shared one
+  std::map<Key, vtkSmartPointer<vtkPolyData>> LastBuilds; // the last execution's
 };
 
 //------------------------------------------------------------------------------
@@ -49,9 +146,56 @@ vtkMultiresolutionHierarchyBuilder::vtkMultiresolutionHierarchyBuilder()
 
 vtkMultiresolutionHierarchyBuilder::~vtkMultiresolutionHierarchyBuilder() = default;
 
+void vtkMultiresolutionHierarchyBuilder::SetNumberOfThreads(int threads)
+{
+  if (threads < 0)
+  {
+    vtkErrorMacro("NumberOfThreads must be >= 0 (0: one per core), not "
+      << threads << "; it stays " << this->NumberOfThreads << ".");
+    return;
+  }
+  if (threads != this->NumberOfThreads)
+  {
+    this->NumberOfThreads = threads; // no Modified(): the output does not depend on it
+  }
+}
+
+void vtkMultiresolutionHierarchyBuilder::SetCache(vtkHierarchyBuildCache* cache)
+{
+  // No Modified(): the output does not depend on where builds are kept.
+  this->Internal->Cache = cache;
+}
+
+vtkHierarchyBuildCache* vtkMultiresolutionHierarchyBuilder::GetCache()
+{
+  return this->Internal->Cache ? this->Internal->Cache.GetPointer()
+                               : vtkHierarchyBuildCache::GetSharedInstance();
+}
+
+void vtkMultiresolutionHierarchyBuilder::SetCacheMemoryLimit(vtkTypeInt64 bytes)
+{
+  this->GetCache()->SetMemoryLimit(bytes);
+}
+
+vtkTypeInt64 vtkMultiresolutionHierarchyBuilder::GetCacheMemoryLimit()
+{
+  return this->GetCache()->GetMemoryLimit();
+}
+
+void vtkMultiresolutionHierarchyBuilder::SetCacheDirectory(const char* path)
+{
+  this->GetCache()->SetDirectory(path);
+}
+
+std::string vtkMultiresolutionHierarchyBuilder::GetCacheDirectory()
+{
+  return this->GetCache()->GetDirectory();
+}
+
 void vtkMultiresolutionHierarchyBuilder::ClearCache()
 {
-  this->Internal->Cache.clear();
+  this->Internal->LastBuilds.clear();
+  this->GetCache()->Clear();
   this->Modified();
 }
 
@@ -62,13 +206,12 @@ int vtkMultiresolutionHierarchyBuilder::RequestData(
   vtkDataObject* input = vtkDataObject::GetData(inputVector[0], 0);
   vtkDataObject* output = vtkDataObject::GetData(outputVector, 0);
   this->NumberOfBuiltLeaves = this->NumberOfReusedLeaves = this->NumberOfPassedLeaves = 0;
+  this->NumberOfLoadedLeaves = 0;
   if (!input || !output)
   {
     return 1;
   }
-  std::map<unsigned int, CacheEntry> cache; // this execution's builds
-  double totalCells = 0.0, doneCells = 0.0;       // progress follows the surface cells
-
+  std::vector<Leaf> leaves;
   auto* compositeInput = vtkCompositeDataSet::SafeDownCast(input);
   auto* compositeOutput = vtkCompositeDataSet::SafeDownCast(output);
   if (compositeInput && compositeOutput)
@@ -79,15 +222,21 @@ int vtkMultiresolutionHierarchyBuilder::RequestData(
     iterator->SkipEmptyNodesOn();
     for (iterator->InitTraversal(); !iterator->IsDoneWithTraversal(); iterator->GoToNextItem())
     {
-      totalCells += SurfaceCells(vtkPolyData::SafeDownCast(iterator->GetCurrentDataObject()));
+      if (auto* poly = vtkPolyData::SafeDownCast(iterator->GetCurrentDataObject()))
+      {
+        leaves.emplace_back();
+        leaves.back().Input = poly;
+        leaves.back().Index = iterator->GetCurrentFlatIndex();
+      }
     }
+    this->ProcessLeaves(leaves);
+    size_t next = 0; // the leaves in the same traversal order
     for (iterator->InitTraversal(); !iterator->IsDoneWithTraversal(); iterator->GoToNextItem())
     {
       vtkDataObject* leaf = iterator->GetCurrentDataObject();
-      if (auto* poly = vtkPolyData::SafeDownCast(leaf))
+      if (vtkPolyData::SafeDownCast(leaf))
       {
-        compositeOutput->SetDataSet(iterator,
-          this->ProcessLeaf(poly, iterator->GetCurrentFlatIndex(), cache, totalCells, doneCells));
+        compositeOutput->SetDataSet(iterator, leaves[next++].Output);
       }
       else
       {
@@ -98,91 +247,228 @@ int vtkMultiresolutionHierarchyBuilder::RequestData(
   }
   else if (auto* poly = vtkPolyData::SafeDownCast(input))
   {
-    totalCells = SurfaceCells(poly);
-    output->ShallowCopy(this->ProcessLeaf(poly, 0, cache, totalCells, doneCells));
+    leaves.emplace_back();
+    leaves.back().Input = poly;
+    this->ProcessLeaves(leaves);
+    output->ShallowCopy(leaves.back().Output);
   }
   else
   {
     output->ShallowCopy(input);
-    return 1;
   }
-  this->Internal->Cache.swap(cache);
   return 1;
 }
 
 //------------------------------------------------------------------------------
-vtkSmartPointer<vtkPolyData> vtkMultiresolutionHierarchyBuilder::ProcessLeaf(vtkPolyData* data,
-  unsigned int index, std::map<unsigned int, CacheEntry>& cache, double totalCells,
-  double& doneCells)
+void vtkMultiresolutionHierarchyBuilder::ProcessLeaves(std::vector<Leaf>& leaves)
 {
-  const double cells = SurfaceCells(data);
-  vtkSmartPointer<vtkPolyData> result = data;
-  const bool carries = timecritical::CarriesHierarchy(data,
-    this->Hierarchy == MERGE_TREE ? timecritical::LeafHierarchy::MergeTree
-                                  : timecritical::LeafHierarchy::TotallyOrderedMesh);
-  if (carries || cells == 0.0)
+  const auto hierarchy = this->Hierarchy == MERGE_TREE
+    ? timecritical::LeafHierarchy::MergeTree
+    : timecritical::LeafHierarchy::TotallyOrderedMesh;
+  std::vector<size_t> toHash;
+  double totalCells = 0.0;
+  for (size_t i = 0; i < leaves.size(); ++i)
   {
-    ++this->NumberOfPassedLeaves;
-  }
-  else
-  {
-    const uint64_t hash = timecritical::HashLeafContent(data);
-    auto cached = this->Internal->Cache.find(index);
-    if (cached != this->Internal->Cache.end() && cached->second.Hierarchy == this->Hierarchy &&
-      cached->second.InputHash == hash && cached->second.InputCells == data->GetNumberOfCells())
+    Leaf& leaf = leaves[i];
+    leaf.Cells = SurfaceCells(leaf.Input);
+    totalCells += leaf.Cells;
+    leaf.Output = leaf.Input;
+    leaf.NeedsHierarchy =
+      leaf.Cells > 0.0 && !timecritical::CarriesHierarchy(leaf.Input, hierarchy);
+    if (leaf.NeedsHierarchy)
     {
-      result = cached->second.Output;
-      ++this->NumberOfReusedLeaves;
+      toHash.push_back(i);
+    }
+  }
+  // Hashing reads every array once: on all threads too.
+  const unsigned int cores = std::max(1u, std::thread::hardware_concurrency());
+  const unsigned int threads =
+    this->NumberOfThreads > 0 ? static_cast<unsigned int>(this->NumberOfThreads) : cores;
+  RunOnThreads(
+    toHash.size(), threads,
+    [&](size_t i) {
+      Leaf& leaf = leaves[toHash[i]];
+      leaf.CacheKey = vtkHierarchyBuildCache::MakeKey(leaf.Input, this->Hierarchy);
+    },
+    [] {});
+
+  // The last execution's builds, then one job per content.
+  std::vector<std::unique_ptr<Job>> jobs;
+  std::map<Key, int> jobOfKey;
+  std::map<Key, vtkSmartPointer<vtkPolyData>> builds;
+  double doneCells = 0.0;
+  for (Leaf& leaf : leaves)
+  {
+    if (!leaf.NeedsHierarchy)
+    {
+      doneCells += leaf.Cells;
+      continue;
+    }
+    auto last = this->Internal->LastBuilds.find(leaf.CacheKey);
+    if (last != this->Internal->LastBuilds.end())
+    {
+      leaf.Output = last->second;
+      builds[leaf.CacheKey] = last->second;
+      doneCells += leaf.Cells;
+      continue;
+    }
+    auto known = jobOfKey.emplace(leaf.CacheKey, static_cast<int>(jobs.size()));
+    leaf.JobIndex = known.first->second;
+    leaf.FirstOfJob = known.second;
+    if (known.second)
+    {
+      jobs.emplace_back(new Job);
+      jobs.back()->CacheKey = leaf.CacheKey;
+      jobs.back()->Input = leaf.Input;
+      jobs.back()->Cells = leaf.Cells;
     }
     else
     {
-      result = this->Build(data, index, totalCells > 0.0 ? doneCells / totalCells : 0.0,
-        totalCells > 0.0 ? cells / totalCells : 0.0);
-    }
-    if (result != data) // builds only: a leaf passed as it came costs nothing again
-    {
-      CacheEntry& entry = cache[index];
-      entry.InputHash = hash;
-      entry.InputCells = data->GetNumberOfCells();
-      entry.Output = result;
-      entry.Hierarchy = this->Hierarchy;
+      doneCells += leaf.Cells;
     }
   }
-  doneCells += cells;
-  this->UpdateProgress(totalCells > 0.0 ? doneCells / totalCells : 1.0);
-  return result;
+  this->RunJobs(jobs, doneCells, totalCells);
+
+  // Outputs, counts and messages, in leaf order. Identical leaves get
+  // objects of their own (sharing the arrays).
+  std::set<vtkPolyData*> given;
+  auto give = [&given](Leaf& leaf, vtkPolyData* output) {
+    leaf.Output = output;
+    if (!given.insert(output).second)
+    {
+      leaf.Output = vtkSmartPointer<vtkPolyData>::New();
+      leaf.Output->ShallowCopy(output);
+    }
+  };
+  for (Leaf& leaf : leaves)
+  {
+    if (!leaf.NeedsHierarchy)
+    {
+      ++this->NumberOfPassedLeaves;
+      continue;
+    }
+    if (leaf.JobIndex < 0)
+    {
+      give(leaf, leaf.Output);
+      ++this->NumberOfReusedLeaves;
+      continue;
+    }
+    const Job& job = *jobs[static_cast<size_t>(leaf.JobIndex)];
+    this->ReportMessages(job, leaf.Index);
+    if (!job.Output)
+    {
+      ++this->NumberOfPassedLeaves; // the messages said why (or the build was cancelled)
+      continue;
+    }
+    give(leaf, job.Output);
+    builds[leaf.CacheKey] = job.Output;
+    if (!leaf.FirstOfJob || job.Outcome == Job::MEMORY)
+    {
+      ++this->NumberOfReusedLeaves;
+    }
+    else if (job.Outcome == Job::DISK)
+    {
+      ++this->NumberOfLoadedLeaves;
+    }
+    else
+    {
+      ++this->NumberOfBuiltLeaves;
+      ++this->NumberOfBuilds;
+    }
+  }
+  this->Internal->LastBuilds.swap(builds);
+  this->UpdateProgress(1.0);
 }
 
 //------------------------------------------------------------------------------
-vtkSmartPointer<vtkPolyData> vtkMultiresolutionHierarchyBuilder::Build(
-  vtkPolyData* leaf, unsigned int leafIndex, double progressBase, double progressSpan)
+void vtkMultiresolutionHierarchyBuilder::RunJobs(
+  std::vector<std::unique_ptr<Job>>& jobs, double doneCells, double totalCells)
 {
-  // The leaf's progress, scaled into the whole execution's; an abort of this
-  // filter cancels the build.
-  auto progress = [this, progressBase, progressSpan](double fraction) {
-    this->UpdateProgress(progressBase + progressSpan * fraction);
-    return !this->AbortExecute;
+  vtkHierarchyBuildCache* cache = this->GetCache();
+  const auto hierarchy = this->Hierarchy == MERGE_TREE
+    ? timecritical::LeafHierarchy::MergeTree
+    : timecritical::LeafHierarchy::TotallyOrderedMesh;
+  std::atomic<bool> cancel{ false };
+  // One job: find it in the cache, else build it (the same serial code on any thread).
+  auto run = [&](Job& job, const timecritical::LeafBuildProgress& progress) {
+    if (cancel)
+    {
+      return;
+    }
+    try
+    {
+      bool fromDisk = false;
+      job.Output = cache->Find(job.CacheKey, &job.CacheWarnings, &fromDisk);
+      if (job.Output)
+      {
+        job.Outcome = fromDisk ? Job::DISK : Job::MEMORY;
+        return;
+      }
+      timecritical::LeafBuildResult built =
+        timecritical::BuildLeafHierarchy(job.Input, hierarchy, progress);
+      job.Messages = std::move(built.Messages);
+      if (built.Hierarchy)
+      {
+        job.Output = built.Hierarchy;
+        job.Outcome = Job::BUILT;
+        cache->Insert(job.CacheKey, job.Output, &job.CacheWarnings);
+      }
+    }
+    catch (const std::exception& error) // out of memory: the leaf passes
+    {
+      job.Output = nullptr;
+      job.Outcome = Job::NONE;
+      job.Messages.push_back({ true, std::string("its build failed: ") + error.what() });
+    }
   };
-  const timecritical::LeafBuildResult built = timecritical::BuildLeafHierarchy(leaf,
-    this->Hierarchy == MERGE_TREE ? timecritical::LeafHierarchy::MergeTree
-                                  : timecritical::LeafHierarchy::TotallyOrderedMesh,
-    progress);
-  this->ReportMessages(built, leafIndex);
-  if (!built.Hierarchy)
+  const double scale = totalCells > 0.0 ? 1.0 / totalCells : 0.0;
+  const unsigned int cores = std::max(1u, std::thread::hardware_concurrency());
+  const unsigned int threads =
+    this->NumberOfThreads > 0 ? static_cast<unsigned int>(this->NumberOfThreads) : cores;
+  if (threads <= 1 || jobs.size() <= 1)
   {
-    ++this->NumberOfPassedLeaves; // the messages said why (or the build was aborted)
-    return leaf;
+    // On this thread: progress and abort checks straight from the build.
+    for (auto& job : jobs)
+    {
+      const double base = doneCells;
+      run(*job, [this, base, &job, scale, &cancel](double fraction) {
+        this->UpdateProgress((base + fraction * job->Cells) * scale);
+        cancel = cancel || this->AbortExecute;
+        return !cancel;
+      });
+      doneCells += job->Cells;
+      this->UpdateProgress(doneCells * scale);
+    }
+    return;
   }
-  ++this->NumberOfBuiltLeaves;
-  ++this->NumberOfBuilds;
-  return built.Hierarchy;
+  // On worker threads: they write their progress, this thread reports it.
+  double reported = doneCells * scale;
+  RunOnThreads(
+    jobs.size(), threads,
+    [&](size_t i) {
+      Job& job = *jobs[i];
+      run(job, [&job, &cancel](double fraction) {
+        job.Fraction = fraction;
+        return !cancel;
+      });
+      job.Fraction = 1.0;
+    },
+    [&]() {
+      double cells = doneCells;
+      for (const auto& job : jobs)
+      {
+        cells += std::min(1.0, std::max(0.0, job->Fraction.load())) * job->Cells;
+      }
+      reported = std::max(reported, cells * scale);
+      this->UpdateProgress(reported);
+      cancel = cancel || this->AbortExecute;
+    });
 }
 
-void vtkMultiresolutionHierarchyBuilder::ReportMessages(
-  const timecritical::LeafBuildResult& built, unsigned int leafIndex)
+void vtkMultiresolutionHierarchyBuilder::ReportMessages(const Job& job, unsigned int leafIndex)
 {
   // The builders' messages become this filter's, with the leaf they concern.
-  for (const timecritical::LeafBuildMessage& message : built.Messages)
+  for (const timecritical::LeafBuildMessage& message : job.Messages)
   {
     if (message.IsError)
     {
@@ -194,6 +480,10 @@ void vtkMultiresolutionHierarchyBuilder::ReportMessages(
       vtkWarningMacro("Leaf " << leafIndex << " (composite flat index): " << message.Text);
     }
   }
+  for (const std::string& warning : job.CacheWarnings)
+  {
+    vtkWarningMacro("Leaf " << leafIndex << " (composite flat index): " << warning);
+  }
 }
 
 //------------------------------------------------------------------------------
@@ -202,9 +492,12 @@ void vtkMultiresolutionHierarchyBuilder::PrintSelf(ostream& os, vtkIndent indent
   this->Superclass::PrintSelf(os, indent);
   os << indent << "Hierarchy: "
      << (this->Hierarchy == MERGE_TREE ? "MERGE_TREE" : "TOTALLY_ORDERED_MESH") << "\n";
+  os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
   os << indent << "NumberOfBuiltLeaves: " << this->NumberOfBuiltLeaves << "\n";
   os << indent << "NumberOfReusedLeaves: " << this->NumberOfReusedLeaves << "\n";
+  os << indent << "NumberOfLoadedLeaves: " << this->NumberOfLoadedLeaves << "\n";
   os << indent << "NumberOfPassedLeaves: " << this->NumberOfPassedLeaves << "\n";
   os << indent << "NumberOfBuilds: " << this->NumberOfBuilds << "\n";
-  os << indent << "CachedLeaves: " << this->Internal->Cache.size() << "\n";
+  os << indent << "LastExecutionBuilds: " << this->Internal->LastBuilds.size() << "\n";
+  os << indent << "Cache: " << this->GetCache() << "\n";
 }

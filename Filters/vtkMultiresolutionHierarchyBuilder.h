@@ -14,14 +14,25 @@
  * filter never builds a leaf twice for the same content:
  * - a leaf that already carries the requested hierarchy (the output of one of
  *   those builders, read from a file) passes unchanged;
- * - across executions, a leaf whose points, cells and point and cell data
- *   have the content of the leaf it built last time at the same composite
- *   index (compared by a 64-bit hash of every array's values, computed at
- *   several GB/s) reuses that build, whether its arrays are the same objects
- *   or new ones (ParaView's geometry filter makes them anew at every
- *   execution).
- * So an upstream change that leaves a leaf alone (colouring, another
- * block) costs no build. The cache holds the last execution's leaves only.
+ * - a leaf whose points, cells and point and cell data have the content of a
+ *   leaf built before (compared by a 64-bit hash of every array's values,
+ *   computed at several GB/s, and the cell count) reuses that build, whether
+ *   its arrays are the same objects or new ones (ParaView's geometry filter
+ *   makes them anew at every execution): first the builds of this filter's
+ *   last execution (its output: kept whatever the cache's limit), then its
+ *   vtkHierarchyBuildCache (by default the process-wide shared one, which
+ *   holds many builds under a memory limit and optionally a directory of
+ *   files), then a build. Identical leaves of one execution are built once.
+ * So an upstream change that leaves a leaf alone (colouring, another block)
+ * costs no build, nor does a time step or contour value seen before while
+ * the cache holds it.
+ *
+ * The leaves to build are built at once on NumberOfThreads threads (default
+ * 0: one per core), each by the same serial code as alone, so the results do
+ * not depend on the thread count. Only the calling thread reports progress
+ * (polled about every 50 ms), checks AbortExecute (which cancels the builds
+ * in progress and those not started: their leaves pass without a
+ * hierarchy) and emits the messages, in leaf order, after the builds.
  *
  * Leaves that are not polydata, are empty, or have no polygons or strips
  * pass unchanged (the mapper draws them in full). So do leaves that also
@@ -31,23 +42,19 @@
  * the leaf; the other leaves are built. The builders' own messages become
  * this filter's. Progress follows the triangles built.
  *
- * @sa vtkTOMBuilder vtkMergeTreeBuilder vtkMultiresolutionPolyDataMapper
+ * @sa vtkTOMBuilder vtkMergeTreeBuilder vtkHierarchyBuildCache vtkMultiresolutionPolyDataMapper
  */
 #ifndef vtkMultiresolutionHierarchyBuilder_h
 #define vtkMultiresolutionHierarchyBuilder_h
 
 #include "TimeCriticalFiltersModule.h" // for export macro
 #include "vtkPassInputTypeAlgorithm.h"
-#include "vtkSmartPointer.h" // for vtkSmartPointer
 
-class vtkPolyData;
-namespace timecritical
-{
-struct LeafBuildResult;
-}
-
-#include <map>    // for std::map
 #include <memory> // for std::unique_ptr
+#include <string> // for std::string
+#include <vector> // for std::vector
+
+class vtkHierarchyBuildCache;
 
 class TIMECRITICALFILTERS_EXPORT vtkMultiresolutionHierarchyBuilder
   : public vtkPassInputTypeAlgorithm
@@ -66,16 +73,56 @@ public:
   vtkGetMacro(Hierarchy, int);
 
   ///@{
-  /// Leaves of the last execution: built, reused from the previous execution, passed as they came.
+  /**
+   * Leaves of the last execution: built, reused (from the last execution,
+   * the memory cache or an identical leaf), loaded from the disk cache,
+   * passed as they came.
+   */
   vtkGetMacro(NumberOfBuiltLeaves, vtkIdType);
   vtkGetMacro(NumberOfReusedLeaves, vtkIdType);
+  vtkGetMacro(NumberOfLoadedLeaves, vtkIdType);
   vtkGetMacro(NumberOfPassedLeaves, vtkIdType);
   ///@}
 
   /// Leaves built since this filter was made (all executions).
   vtkGetMacro(NumberOfBuilds, vtkIdType);
 
-  /// Forget the cached builds (the next execution builds every leaf again).
+  ///@{
+  /**
+   * Threads that build leaves at once: 0 (default) one per core, 1 builds on
+   * the calling thread. A negative count is an error (unchanged).
+   */
+  void SetNumberOfThreads(int threads);
+  vtkGetMacro(NumberOfThreads, int);
+  ///@}
+
+  ///@{
+  /**
+   * The cache of builds: by default (or set to null) the process-wide
+   * vtkHierarchyBuildCache::GetSharedInstance(), shared with every other
+   * filter and representation of the process.
+   */
+  void SetCache(vtkHierarchyBuildCache* cache);
+  vtkHierarchyBuildCache* GetCache();
+  ///@}
+
+  ///@{
+  /**
+   * The cache's memory limit in bytes and its directory (empty: no disk
+   * cache), forwarded to GetCache() (which checks them): they apply to every
+   * user of that cache.
+   */
+  void SetCacheMemoryLimit(vtkTypeInt64 bytes);
+  vtkTypeInt64 GetCacheMemoryLimit();
+  void SetCacheDirectory(const char* path);
+  std::string GetCacheDirectory();
+  ///@}
+
+  /**
+   * Forget the cached builds: this filter's last execution and the builds
+   * its cache holds in memory (all of them: the shared cache's too); files
+   * on disk stay. The next execution builds every leaf again (or reads it).
+   */
   void ClearCache();
 
 protected:
@@ -85,8 +132,10 @@ protected:
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
   int Hierarchy = TOTALLY_ORDERED_MESH;
+  int NumberOfThreads = 0;
   vtkIdType NumberOfBuiltLeaves = 0;
   vtkIdType NumberOfReusedLeaves = 0;
+  vtkIdType NumberOfLoadedLeaves = 0;
   vtkIdType NumberOfPassedLeaves = 0;
   vtkIdType NumberOfBuilds = 0;
 
@@ -94,17 +143,14 @@ private:
   vtkMultiresolutionHierarchyBuilder(const vtkMultiresolutionHierarchyBuilder&) = delete;
   void operator=(const vtkMultiresolutionHierarchyBuilder&) = delete;
 
-  struct CacheEntry;
-  /// One polydata leaf's output: passed, reused from the last execution, or built.
-  vtkSmartPointer<vtkPolyData> ProcessLeaf(vtkPolyData* data, unsigned int index,
-    std::map<unsigned int, CacheEntry>& cache, double totalCells, double& doneCells);
-
-  /// Build the hierarchy of one leaf (the leaf itself when the builder rejects it).
-  vtkSmartPointer<vtkPolyData> Build(
-    vtkPolyData* leaf, unsigned int leafIndex, double progressBase, double progressSpan);
-
-  /// A build's errors and warnings, as this filter's, naming the leaf.
-  void ReportMessages(const timecritical::LeafBuildResult& built, unsigned int leafIndex);
+  struct Leaf;
+  struct Job;
+  /// The outputs of `leaves`: passed, reused, loaded or built.
+  void ProcessLeaves(std::vector<Leaf>& leaves);
+  /// Run the jobs (on threads when there are several), reporting progress.
+  void RunJobs(std::vector<std::unique_ptr<Job>>& jobs, double doneCells, double totalCells);
+  /// A leaf's messages (its build's and its cache files'), as this filter's, naming it.
+  void ReportMessages(const Job& job, unsigned int leafIndex);
 
   struct Internals;
   std::unique_ptr<Internals> Internal;

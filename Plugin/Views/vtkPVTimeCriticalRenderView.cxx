@@ -8,6 +8,7 @@
 #include "vtkCollectionIterator.h"
 #include "vtkCameraPass.h"
 #include "vtkDataRepresentation.h"
+#include "vtkHierarchyBuildCache.h"
 #include "vtkIceTCompositePass.h"
 #include "vtkImageProcessingPass.h"
 #include "vtkMultiProcessController.h"
@@ -321,6 +322,47 @@ void vtkPVTimeCriticalRenderView::SetShowStatistics(bool on)
 void vtkPVTimeCriticalRenderView::SetLODRenderingThreshold(double)
 {
   // The frame-time budget replaces ParaView's single-level LOD in this view.
+}
+
+//------------------------------------------------------------------------------
+void vtkPVTimeCriticalRenderView::SetHierarchyCacheMemoryLimitMiB(double mib)
+{
+  if (!(mib >= 0.0) || !std::isfinite(mib))
+  {
+    vtkErrorMacro("HierarchyCacheMemory must be >= 0 MiB (0: leave the process's limit), not "
+      << mib << ".");
+    return;
+  }
+  if (mib != this->HierarchyCacheMemoryLimitMiB)
+  {
+    this->HierarchyCacheMemoryLimitMiB = mib;
+    if (mib > 0.0)
+    {
+      vtkHierarchyBuildCache::GetSharedInstance()->SetMemoryLimit(
+        static_cast<vtkTypeInt64>(std::min(mib, 1e12) * 1024.0 * 1024.0));
+    }
+  }
+}
+
+double vtkPVTimeCriticalRenderView::GetHierarchyCacheMemoryLimitMiB()
+{
+  return static_cast<double>(vtkHierarchyBuildCache::GetSharedInstance()->GetMemoryLimit()) /
+    (1024.0 * 1024.0);
+}
+
+void vtkPVTimeCriticalRenderView::SetHierarchyCacheDirectory(const char* path)
+{
+  const std::string directory = path ? path : "";
+  if (directory != this->HierarchyCacheDirectory)
+  {
+    this->HierarchyCacheDirectory = directory;
+    vtkHierarchyBuildCache::GetSharedInstance()->SetDirectory(directory.c_str());
+  }
+}
+
+std::string vtkPVTimeCriticalRenderView::GetHierarchyCacheDirectory()
+{
+  return vtkHierarchyBuildCache::GetSharedInstance()->GetDirectory();
 }
 
 //------------------------------------------------------------------------------

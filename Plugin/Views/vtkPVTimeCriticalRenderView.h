@@ -160,6 +160,24 @@ public:
   /// Has no effect: the frame-time budget replaces ParaView's LOD in this view.
   void SetLODRenderingThreshold(double threshold);
 
+  ///@{
+  /**
+   * The hierarchy cache of this process (vtkHierarchyBuildCache's shared
+   * instance, used by every time-critical representation of the process and
+   * their builds): its memory limit in MiB and its directory (empty: no disk
+   * cache). One setting per process, so the last view to change it sets it;
+   * a view applies a value only when it differs from the view's previous one,
+   * so a new view's defaults (0 MiB and no directory: leave the process's
+   * setting, by default a quarter of physical memory and no disk cache)
+   * change nothing. A negative limit or a directory that cannot be written
+   * is an error (the setting is then unchanged, or the disk cache off).
+   */
+  void SetHierarchyCacheMemoryLimitMiB(double mib);
+  double GetHierarchyCacheMemoryLimitMiB();
+  void SetHierarchyCacheDirectory(const char* path);
+  std::string GetHierarchyCacheDirectory();
+  ///@}
+
 protected:
   vtkPVTimeCriticalRenderView();
   ~vtkPVTimeCriticalRenderView() override;
@@ -176,6 +194,8 @@ protected:
   bool FullResolutionStillRenders = true;
   bool ShowStatistics = false;
   bool WarnedAboutOtherRepresentations = false;
+  double HierarchyCacheMemoryLimitMiB = 0.0; // as last set on this view (0: not set)
+  std::string HierarchyCacheDirectory;       // as last set on this view
   std::vector<double> RankStatistics; // per rank: measured, predicted, target, triangles, fixed, drawing
   double CompositingTime = 0.0;
   vtkNew<vtkTimeCriticalDrawingPass> DrawingPass;

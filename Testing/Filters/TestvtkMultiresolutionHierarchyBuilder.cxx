@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// Tests of vtkMultiresolutionHierarchyBuilder: builds, reuse, pass-through, messages.
+// Tests of vtkMultiresolutionHierarchyBuilder: builds, reuse (last execution,
+// memory and disk cache), pass-through, messages, parallel builds.
 #include "FilterTestSupport.h"
+#include "vtkHierarchyBuildCache.h"
 #include "vtkMergeTreeFieldData.h"
 #include "vtkMultiresolutionHierarchyBuilder.h"
 #include "vtkTOMBuilder.h"
@@ -16,9 +18,13 @@
 #include "vtkSmartPointer.h"
 #include "vtkUnstructuredGrid.h"
 
+#include <vtksys/SystemTools.hxx>
+
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
+#include <thread>
 #include <string>
 #include <limits>
 #include <vector>
@@ -34,7 +40,15 @@ vtkPolyData* Leaf(vtkMultiBlockDataSet* data, unsigned int block)
   return vtkPolyData::SafeDownCast(data->GetBlock(block));
 }
 
-TEST(MultiresolutionHierarchyBuilder, BuildsATOMForPolyData)
+/// Each test starts from an empty shared cache (ctest runs each in a process
+/// of its own, but the test program may run them all in one).
+class MultiresolutionHierarchyBuilder : public ::testing::Test
+{
+protected:
+  void SetUp() override { vtkHierarchyBuildCache::GetSharedInstance()->Clear(); }
+};
+
+TEST_F(MultiresolutionHierarchyBuilder, BuildsATOMForPolyData)
 {
   auto sphere = MakeSphere(30);
   vtkNew<vtkMultiresolutionHierarchyBuilder> builder;
@@ -49,7 +63,7 @@ TEST(MultiresolutionHierarchyBuilder, BuildsATOMForPolyData)
   EXPECT_EQ(builder->GetNumberOfBuilds(), 1);
 }
 
-TEST(MultiresolutionHierarchyBuilder, ReusesBuildsOfUnchangedContent)
+TEST_F(MultiresolutionHierarchyBuilder, ReusesBuildsOfUnchangedContent)
 {
   auto sphere = MakeSphere(30);
   vtkNew<vtkMultiresolutionHierarchyBuilder> builder;
@@ -99,7 +113,7 @@ TEST(MultiresolutionHierarchyBuilder, ReusesBuildsOfUnchangedContent)
   EXPECT_EQ(builder->GetNumberOfBuilds(), 5);
 }
 
-TEST(MultiresolutionHierarchyBuilder, KeepsCompositeStructureAndPassesOtherLeaves)
+TEST_F(MultiresolutionHierarchyBuilder, KeepsCompositeStructureAndPassesOtherLeaves)
 {
   vtkNew<vtkMultiBlockDataSet> input;
   input->SetNumberOfBlocks(6);
@@ -164,7 +178,7 @@ TEST(MultiresolutionHierarchyBuilder, KeepsCompositeStructureAndPassesOtherLeave
   EXPECT_EQ(builder->GetNumberOfBuilds(), 3);
 }
 
-TEST(MultiresolutionHierarchyBuilder, RejectedLeafPassesWithAMessageNamingIt)
+TEST_F(MultiresolutionHierarchyBuilder, RejectedLeafPassesWithAMessageNamingIt)
 {
   vtkNew<vtkMultiBlockDataSet> input;
   input->SetNumberOfBlocks(2);
@@ -186,7 +200,7 @@ TEST(MultiresolutionHierarchyBuilder, RejectedLeafPassesWithAMessageNamingIt)
   EXPECT_TRUE(log.ErrorContains("finite")) << log.AllErrors();
 }
 
-TEST(MultiresolutionHierarchyBuilder, ProgressRisesToOne)
+TEST_F(MultiresolutionHierarchyBuilder, ProgressRisesToOne)
 {
   vtkNew<vtkMultiBlockDataSet> input;
   input->SetNumberOfBlocks(3);
@@ -211,5 +225,378 @@ TEST(MultiresolutionHierarchyBuilder, ProgressRisesToOne)
     EXPECT_GE(progress[i], progress[i - 1] - 1e-12) << "at " << i;
   }
   EXPECT_DOUBLE_EQ(progress.back(), 1.0);
+}
+
+//------------------------------------------------------------------------------
+// The cache across executions and the parallel builds.
+
+/// A sphere moved by `shift` along x: the leaf of one time step.
+vtkSmartPointer<vtkPolyData> Step(double shift, int resolution = 16)
+{
+  auto sphere = MakeSphere(resolution);
+  for (vtkIdType i = 0; i < sphere->GetNumberOfPoints(); ++i)
+  {
+    double p[3];
+    sphere->GetPoints()->GetPoint(i, p);
+    p[0] += shift;
+    sphere->GetPoints()->SetPoint(i, p);
+  }
+  return sphere;
+}
+
+vtkSmartPointer<vtkMultiBlockDataSet> Blocks(
+  const std::vector<vtkSmartPointer<vtkPolyData>>& leaves)
+{
+  auto blocks = vtkSmartPointer<vtkMultiBlockDataSet>::New();
+  blocks->SetNumberOfBlocks(static_cast<unsigned int>(leaves.size()));
+  for (size_t i = 0; i < leaves.size(); ++i)
+  {
+    blocks->SetBlock(static_cast<unsigned int>(i), leaves[i]);
+  }
+  return blocks;
+}
+
+/// Leaves of different sizes (resolutions 14 to 14 + 2 (count - 1)).
+std::vector<vtkSmartPointer<vtkPolyData>> VariedLeaves(int count)
+{
+  std::vector<vtkSmartPointer<vtkPolyData>> leaves;
+  for (int i = 0; i < count; ++i)
+  {
+    leaves.push_back(Step(i, 14 + 2 * i));
+  }
+  return leaves;
+}
+
+std::string ScratchDirectory(const std::string& name)
+{
+  const std::string path =
+    std::string(TIMECRITICAL_TEST_OUTPUT_DIR) + "/MultiresolutionHierarchyBuilder-" + name;
+  vtksys::SystemTools::RemoveADirectory(path);
+  return path;
+}
+
+TEST_F(MultiresolutionHierarchyBuilder, LoopingOverTimeStepsBuildsEachStepOnce)
+{
+  std::vector<vtkSmartPointer<vtkPolyData>> steps;
+  for (int i = 0; i < 5; ++i)
+  {
+    steps.push_back(Step(i));
+  }
+  vtkHierarchyBuildCache* shared = vtkHierarchyBuildCache::GetSharedInstance();
+  shared->ResetStatistics();
+  vtkNew<vtkMultiresolutionHierarchyBuilder> builder;
+  EXPECT_EQ(builder->GetCache(), shared);
+  for (int loop = 0; loop < 2; ++loop)
+  {
+    for (auto& step : steps)
+    {
+      builder->SetInputData(step);
+      builder->Update();
+      EXPECT_EQ(builder->GetNumberOfBuiltLeaves() + builder->GetNumberOfReusedLeaves(), 1);
+      EXPECT_EQ(builder->GetNumberOfReusedLeaves(), loop);
+      EXPECT_TRUE(vtkTOMFieldData::HasTOMArrays(
+        vtkPolyData::SafeDownCast(builder->GetOutputDataObject(0))));
+    }
+    EXPECT_EQ(builder->GetNumberOfBuilds(), 5);
+  }
+  EXPECT_EQ(shared->GetNumberOfMemoryHits(), 5);
+  EXPECT_EQ(shared->GetNumberOfEntries(), 5);
+
+  // Another filter (another representation) finds them too.
+  vtkNew<vtkMultiresolutionHierarchyBuilder> other;
+  other->SetInputData(Blocks(steps));
+  other->Update();
+  EXPECT_EQ(other->GetNumberOfBuilds(), 0);
+  EXPECT_EQ(other->GetNumberOfReusedLeaves(), 5);
+}
+
+TEST_F(MultiresolutionHierarchyBuilder, GoingBackToAnEarlierContentBuildsNothing)
+{
+  vtkNew<vtkHierarchyBuildCache> cache;
+  vtkNew<vtkMultiresolutionHierarchyBuilder> builder;
+  builder->SetCache(cache);
+  EXPECT_EQ(builder->GetCache(), cache.GetPointer());
+  auto first = Step(0.0), second = Step(1.0);
+  for (vtkPolyData* content : { first.GetPointer(), second.GetPointer(), first.GetPointer() })
+  {
+    auto copy = vtkSmartPointer<vtkPolyData>::New(); // new arrays, as ParaView makes
+    copy->DeepCopy(content);
+    builder->SetInputData(copy);
+    builder->Update();
+  }
+  EXPECT_EQ(builder->GetNumberOfBuilds(), 2);
+  EXPECT_EQ(builder->GetNumberOfReusedLeaves(), 1);
+  EXPECT_EQ(cache->GetNumberOfMemoryHits(), 1);
+  // The filter's own cache: the shared one was not used.
+  EXPECT_EQ(vtkHierarchyBuildCache::GetSharedInstance()->GetNumberOfEntries(), 0);
+  builder->SetCache(nullptr);
+  EXPECT_EQ(builder->GetCache(), vtkHierarchyBuildCache::GetSharedInstance());
+}
+
+TEST_F(MultiresolutionHierarchyBuilder, TheMemoryLimitEvictsAndThenRebuilds)
+{
+  std::vector<vtkSmartPointer<vtkPolyData>> steps = { Step(0), Step(1), Step(2) };
+  vtkNew<vtkHierarchyBuildCache> cache;
+  vtkNew<vtkMultiresolutionHierarchyBuilder> builder;
+  builder->SetCache(cache);
+  builder->SetInputData(steps[0]);
+  builder->Update();
+  const vtkTypeInt64 size = cache->GetMemoryInUse();
+  ASSERT_GT(size, 0);
+  builder->SetCacheMemoryLimit(size + size / 2); // one step
+  EXPECT_EQ(cache->GetMemoryLimit(), size + size / 2);
+  for (int loop = 0; loop < 2; ++loop)
+  {
+    for (auto& step : steps)
+    {
+      builder->SetInputData(step);
+      builder->Update();
+      EXPECT_LE(cache->GetMemoryInUse(), cache->GetMemoryLimit());
+    }
+  }
+  EXPECT_EQ(builder->GetNumberOfBuilds(), 6);
+  EXPECT_GE(cache->GetNumberOfEvictions(), 4);
+  builder->SetCacheMemoryLimit(100 * size);
+  EXPECT_EQ(builder->GetCacheMemoryLimit(), 100 * size);
+  for (int loop = 0; loop < 2; ++loop)
+  {
+    for (auto& step : steps)
+    {
+      builder->SetInputData(step);
+      builder->Update();
+    }
+  }
+  EXPECT_EQ(builder->GetNumberOfBuilds(), 8); // the two steps evicted, once
+}
+
+TEST_F(MultiresolutionHierarchyBuilder, TheDiskCacheServesANewProcess)
+{
+  const std::string directory = ScratchDirectory("Disk");
+  auto input = Blocks(VariedLeaves(3));
+  vtkNew<vtkMultiresolutionHierarchyBuilder> writer;
+  vtkNew<vtkHierarchyBuildCache> writerCache;
+  writer->SetCache(writerCache);
+  writer->SetHierarchy(vtkMultiresolutionHierarchyBuilder::MERGE_TREE);
+  writer->SetCacheDirectory(directory.c_str());
+  EXPECT_EQ(writer->GetCacheDirectory(), directory);
+  writer->SetInputData(input);
+  writer->Update();
+  EXPECT_EQ(writer->GetNumberOfBuiltLeaves(), 3);
+  EXPECT_EQ(writerCache->GetNumberOfFilesWritten(), 3);
+
+  vtkNew<vtkMultiresolutionHierarchyBuilder> reader; // as after a restart
+  vtkNew<vtkHierarchyBuildCache> readerCache;
+  reader->SetCache(readerCache);
+  reader->SetHierarchy(vtkMultiresolutionHierarchyBuilder::MERGE_TREE);
+  reader->SetCacheDirectory(directory.c_str());
+  MessageLog log(reader);
+  auto copy = vtkSmartPointer<vtkMultiBlockDataSet>::New();
+  copy->DeepCopy(input);
+  reader->SetInputData(copy);
+  reader->Update();
+  EXPECT_EQ(reader->GetNumberOfBuilds(), 0);
+  EXPECT_EQ(reader->GetNumberOfLoadedLeaves(), 3);
+  EXPECT_TRUE(log.Warnings.empty());
+  auto* built = vtkMultiBlockDataSet::SafeDownCast(writer->GetOutputDataObject(0));
+  auto* loaded = vtkMultiBlockDataSet::SafeDownCast(reader->GetOutputDataObject(0));
+  for (unsigned int i = 0; i < 3; ++i)
+  {
+    tt::ExpectSameArrays(Leaf(loaded, i), Leaf(built, i));
+  }
+}
+
+TEST_F(MultiresolutionHierarchyBuilder, ACorruptedCacheFileIsRebuiltWithAWarning)
+{
+  const std::string directory = ScratchDirectory("Corrupted");
+  auto sphere = MakeSphere(18);
+  vtkNew<vtkHierarchyBuildCache> cache;
+  ASSERT_TRUE(cache->SetDirectory(directory.c_str()));
+  const std::string path = cache->FilePath(vtkHierarchyBuildCache::MakeKey(sphere, 0));
+  {
+    std::ofstream garbage(path.c_str(), std::ios::binary);
+    garbage << "<?xml version=\"1.0\"?><VTKFile type=\"PolyData\"><Poly";
+  }
+  vtkNew<vtkMultiresolutionHierarchyBuilder> builder;
+  builder->SetCache(cache);
+  MessageLog log(builder);
+  builder->SetInputData(sphere);
+  builder->Update();
+  ASSERT_EQ(log.Warnings.size(), 1u);
+  EXPECT_NE(log.Warnings[0].find("Leaf 0 (composite flat index)"), std::string::npos);
+  EXPECT_NE(log.Warnings[0].find(path), std::string::npos) << log.Warnings[0];
+  EXPECT_TRUE(log.Errors.empty()) << log.AllErrors();
+  EXPECT_EQ(builder->GetNumberOfBuiltLeaves(), 1);
+  auto* out = vtkPolyData::SafeDownCast(builder->GetOutputDataObject(0));
+  tt::ExpectSameArrays(out, tt::RunFilter<vtkTOMBuilder>(sphere, nullptr));
+
+  // The file was rewritten: a new cache reads it.
+  vtkNew<vtkHierarchyBuildCache> next;
+  next->SetDirectory(directory.c_str());
+  vtkNew<vtkMultiresolutionHierarchyBuilder> again;
+  again->SetCache(next);
+  again->SetInputData(sphere);
+  again->Update();
+  EXPECT_EQ(again->GetNumberOfLoadedLeaves(), 1);
+  EXPECT_EQ(next->GetNumberOfRejectedFiles(), 0);
+}
+
+TEST_F(MultiresolutionHierarchyBuilder, ParallelBuildsEqualSerialBuildsBitForBit)
+{
+  auto input = Blocks(VariedLeaves(8));
+  for (int hierarchy : { vtkMultiresolutionHierarchyBuilder::TOTALLY_ORDERED_MESH,
+         vtkMultiresolutionHierarchyBuilder::MERGE_TREE })
+  {
+    vtkNew<vtkMultiresolutionHierarchyBuilder> serial, parallel;
+    vtkNew<vtkHierarchyBuildCache> serialCache, parallelCache;
+    serial->SetCache(serialCache);
+    parallel->SetCache(parallelCache);
+    serial->SetNumberOfThreads(1);
+    parallel->SetNumberOfThreads(4);
+    for (vtkMultiresolutionHierarchyBuilder* builder :
+      { serial.GetPointer(), parallel.GetPointer() })
+    {
+      builder->SetHierarchy(hierarchy);
+      builder->SetInputData(input);
+      builder->Update();
+      EXPECT_EQ(builder->GetNumberOfBuiltLeaves(), 8);
+    }
+    auto* a = vtkMultiBlockDataSet::SafeDownCast(serial->GetOutputDataObject(0));
+    auto* b = vtkMultiBlockDataSet::SafeDownCast(parallel->GetOutputDataObject(0));
+    for (unsigned int i = 0; i < 8; ++i)
+    {
+      SCOPED_TRACE("leaf " + std::to_string(i) + ", hierarchy " + std::to_string(hierarchy));
+      tt::ExpectSameArrays(Leaf(a, i), Leaf(b, i));
+    }
+    // The same code as a builder of its own.
+    if (hierarchy == vtkMultiresolutionHierarchyBuilder::TOTALLY_ORDERED_MESH)
+    {
+      tt::ExpectSameArrays(Leaf(b, 5), tt::RunFilter<vtkTOMBuilder>(Leaf(input, 5), nullptr));
+    }
+  }
+}
+
+TEST_F(MultiresolutionHierarchyBuilder, IdenticalLeavesAreBuiltOnce)
+{
+  auto sphere = Step(0.0);
+  auto copy = vtkSmartPointer<vtkPolyData>::New();
+  copy->DeepCopy(sphere);
+  auto input = Blocks({ sphere, copy, Step(1.0) });
+  vtkNew<vtkMultiresolutionHierarchyBuilder> builder;
+  builder->SetNumberOfThreads(2);
+  builder->SetInputData(input);
+  builder->Update();
+  EXPECT_EQ(builder->GetNumberOfBuiltLeaves(), 2);
+  EXPECT_EQ(builder->GetNumberOfReusedLeaves(), 1);
+  auto* out = vtkMultiBlockDataSet::SafeDownCast(builder->GetOutputDataObject(0));
+  // Objects of their own, arrays shared.
+  EXPECT_NE(Leaf(out, 0), Leaf(out, 1));
+  EXPECT_EQ(Leaf(out, 0)->GetPoints()->GetData(), Leaf(out, 1)->GetPoints()->GetData());
+  // Again: the last execution's builds, still one object per leaf.
+  builder->Modified();
+  builder->Update();
+  EXPECT_EQ(builder->GetNumberOfReusedLeaves(), 3);
+  out = vtkMultiBlockDataSet::SafeDownCast(builder->GetOutputDataObject(0));
+  EXPECT_NE(Leaf(out, 0), Leaf(out, 1));
+}
+
+TEST_F(MultiresolutionHierarchyBuilder, ThreadsReportMessagesInLeafOrder)
+{
+  std::vector<vtkSmartPointer<vtkPolyData>> leaves = VariedLeaves(5);
+  for (unsigned int bad : { 1u, 3u })
+  {
+    leaves[bad]->GetPoints()->SetPoint(2, std::numeric_limits<double>::infinity(), 0.0, 0.0);
+  }
+  vtkNew<vtkMultiresolutionHierarchyBuilder> builder;
+  builder->SetNumberOfThreads(4);
+  MessageLog log(builder);
+  builder->SetInputData(Blocks(leaves));
+  builder->Update();
+  ASSERT_EQ(log.Errors.size(), 2u) << log.AllErrors();
+  EXPECT_NE(log.Errors[0].find("Leaf 2 (composite flat index)"), std::string::npos);
+  EXPECT_NE(log.Errors[1].find("Leaf 4 (composite flat index)"), std::string::npos);
+  EXPECT_EQ(builder->GetNumberOfBuiltLeaves(), 3);
+  EXPECT_EQ(builder->GetNumberOfPassedLeaves(), 2);
+}
+
+TEST_F(MultiresolutionHierarchyBuilder, ThreadsLeaveProgressToTheCallingThread)
+{
+  vtkNew<vtkMultiresolutionHierarchyBuilder> builder;
+  builder->SetNumberOfThreads(3);
+  struct Record
+  {
+    std::vector<double> Progress;
+    std::vector<std::thread::id> Threads;
+  } record;
+  vtkNew<vtkCallbackCommand> callback;
+  callback->SetClientData(&record);
+  callback->SetCallback([](vtkObject* caller, unsigned long, void* client, void*) {
+    auto* r = static_cast<Record*>(client);
+    r->Progress.push_back(static_cast<vtkAlgorithm*>(caller)->GetProgress());
+    r->Threads.push_back(std::this_thread::get_id());
+  });
+  builder->AddObserver(vtkCommand::ProgressEvent, callback);
+  builder->SetInputData(Blocks(VariedLeaves(6)));
+  builder->Update();
+  ASSERT_FALSE(record.Progress.empty());
+  for (size_t i = 0; i < record.Progress.size(); ++i)
+  {
+    EXPECT_EQ(record.Threads[i], std::this_thread::get_id());
+    EXPECT_GE(record.Progress[i], i ? record.Progress[i - 1] - 1e-12 : 0.0) << "at " << i;
+  }
+  EXPECT_DOUBLE_EQ(record.Progress.back(), 1.0);
+}
+
+TEST_F(MultiresolutionHierarchyBuilder, AnAbortCancelsThePendingBuilds)
+{
+  std::vector<vtkSmartPointer<vtkPolyData>> leaves;
+  for (int i = 0; i < 6; ++i)
+  {
+    leaves.push_back(Step(i, 60));
+  }
+  auto input = Blocks(leaves);
+  for (int threads : { 1, 2 })
+  {
+    vtkNew<vtkMultiresolutionHierarchyBuilder> builder;
+    vtkNew<vtkHierarchyBuildCache> cache;
+    builder->SetCache(cache);
+    builder->SetNumberOfThreads(threads);
+    tt::AbortPastOneFifth(builder);
+    builder->SetInputData(input);
+    builder->Update();
+    EXPECT_LT(builder->GetNumberOfBuiltLeaves(), 6) << threads << " threads";
+    EXPECT_EQ(builder->GetNumberOfBuiltLeaves() + builder->GetNumberOfPassedLeaves(), 6);
+    auto* out = vtkMultiBlockDataSet::SafeDownCast(builder->GetOutputDataObject(0));
+    for (unsigned int i = 0; i < 6; ++i)
+    {
+      // A cancelled leaf passes as it came, never half built.
+      EXPECT_TRUE(
+        Leaf(out, i) == leaves[i].GetPointer() || vtkTOMFieldData::HasTOMArrays(Leaf(out, i)));
+    }
+    // Cancelled builds are not cached: without the abort every leaf is built.
+    EXPECT_EQ(cache->GetNumberOfEntries(), builder->GetNumberOfBuiltLeaves());
+    builder->RemoveAllObservers();
+    builder->SetAbortExecute(0);
+    builder->Modified();
+    builder->Update();
+    EXPECT_EQ(builder->GetNumberOfBuiltLeaves() + builder->GetNumberOfReusedLeaves(), 6);
+  }
+}
+
+TEST_F(MultiresolutionHierarchyBuilder, BadSettingsGiveClearErrors)
+{
+  vtkNew<vtkMultiresolutionHierarchyBuilder> builder;
+  MessageLog log(builder);
+  builder->SetNumberOfThreads(-2);
+  ASSERT_EQ(log.Errors.size(), 1u);
+  EXPECT_NE(log.Errors[0].find("NumberOfThreads must be >= 0"), std::string::npos) << log.Errors[0];
+  EXPECT_EQ(builder->GetNumberOfThreads(), 0);
+  // The cache's settings are checked by the cache.
+  vtkNew<vtkHierarchyBuildCache> cache;
+  builder->SetCache(cache);
+  MessageLog cacheLog(cache);
+  const vtkTypeInt64 limit = cache->GetMemoryLimit();
+  builder->SetCacheMemoryLimit(-1);
+  EXPECT_EQ(cacheLog.Errors.size(), 1u);
+  EXPECT_EQ(builder->GetCacheMemoryLimit(), limit);
 }
 } // namespace

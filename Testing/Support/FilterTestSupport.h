@@ -13,6 +13,7 @@
 #include "vtkCellData.h"
 #include "vtkCommand.h"
 #include "vtkDataArray.h"
+#include "vtkFieldData.h"
 #include "vtkDoubleArray.h"
 #include "vtkNew.h"
 #include "vtkPlaneSource.h"
@@ -24,12 +25,14 @@
 #include "vtkSphereSource.h"
 #include "vtkStripper.h"
 #include "vtkTriangleFilter.h"
+#include "vtkVariant.h"
 #include "vtkXMLPolyDataReader.h"
 #include "vtkXMLPolyDataWriter.h"
 
 #include <gtest/gtest.h>
 
 #include <array>
+#include <cstring>
 #include <map>
 #include <string>
 #include <vector>
@@ -202,6 +205,61 @@ inline void AbortPastOneFifth(vtkAlgorithm* filter)
     }
   });
   filter->AddObserver(vtkCommand::ProgressEvent, abort);
+}
+
+/// Same type, shape, name and values (bytes of numeric arrays, else text).
+inline void ExpectSameArray(vtkAbstractArray* a, vtkAbstractArray* b, const std::string& what)
+{
+  ASSERT_TRUE(a && b) << what;
+  EXPECT_STREQ(a->GetName(), b->GetName()) << what;
+  ASSERT_EQ(a->GetDataType(), b->GetDataType()) << what;
+  ASSERT_EQ(a->GetNumberOfComponents(), b->GetNumberOfComponents()) << what;
+  ASSERT_EQ(a->GetNumberOfTuples(), b->GetNumberOfTuples()) << what;
+  auto* da = vtkDataArray::SafeDownCast(a);
+  auto* db = vtkDataArray::SafeDownCast(b);
+  if (da && db && da->HasStandardMemoryLayout() && db->HasStandardMemoryLayout())
+  {
+    const size_t bytes =
+      static_cast<size_t>(da->GetNumberOfValues()) * static_cast<size_t>(da->GetDataTypeSize());
+    EXPECT_EQ(bytes == 0 ? 0 : std::memcmp(da->GetVoidPointer(0), db->GetVoidPointer(0), bytes), 0)
+      << what;
+    return;
+  }
+  for (vtkIdType i = 0; i < a->GetNumberOfValues(); ++i)
+  {
+    ASSERT_EQ(a->GetVariantValue(i).ToString(), b->GetVariantValue(i).ToString()) << what;
+  }
+}
+
+/// Two polydata hold the same points, cells and point, cell and field arrays, bit for bit.
+inline void ExpectSameArrays(vtkPolyData* a, vtkPolyData* b)
+{
+  ASSERT_TRUE(a && b);
+  ExpectSameArray(a->GetPoints()->GetData(), b->GetPoints()->GetData(), "points");
+  vtkCellArray* cells[4][2] = { { a->GetVerts(), b->GetVerts() }, { a->GetLines(), b->GetLines() },
+    { a->GetPolys(), b->GetPolys() }, { a->GetStrips(), b->GetStrips() } };
+  for (auto& pair : cells)
+  {
+    ASSERT_EQ(pair[0]->GetNumberOfCells(), pair[1]->GetNumberOfCells());
+    if (pair[0]->GetNumberOfCells() > 0)
+    {
+      ExpectSameArray(pair[0]->GetOffsetsArray(), pair[1]->GetOffsetsArray(), "offsets");
+      ExpectSameArray(
+        pair[0]->GetConnectivityArray(), pair[1]->GetConnectivityArray(), "connectivity");
+    }
+  }
+  vtkFieldData* attributes[3][2] = { { a->GetPointData(), b->GetPointData() },
+    { a->GetCellData(), b->GetCellData() }, { a->GetFieldData(), b->GetFieldData() } };
+  for (auto& pair : attributes)
+  {
+    ASSERT_EQ(pair[0]->GetNumberOfArrays(), pair[1]->GetNumberOfArrays());
+    for (int i = 0; i < pair[0]->GetNumberOfArrays(); ++i)
+    {
+      vtkAbstractArray* array = pair[0]->GetAbstractArray(i);
+      ExpectSameArray(array, pair[1]->GetAbstractArray(array->GetName()),
+        std::string("array ") + (array->GetName() ? array->GetName() : "?"));
+    }
+  }
 }
 
 /**

@@ -77,6 +77,42 @@ class vtkPVTimeCriticalRenderViewTests(ViewTests, unittest.TestCase):
         view.TargetFrameTime = -5  # the renderer reports it and keeps 100 ms
         self.assertAlmostEqual(renderer.GetTargetFrameTime(), 0.1)
 
+    def test_hierarchy_cache_settings_apply_to_the_process_cache(self):
+        view = self.view()
+        server = view.GetClientSideObject()
+        default_mib = server.GetHierarchyCacheMemoryLimitMiB()
+        self.assertGreater(default_mib, 0)
+        self.assertEqual(view.HierarchyCacheMemory, 0)  # 0: the process's limit, untouched
+        self.assertEqual(view.HierarchyCacheDirectory, "")
+        directory = os.path.join(OUT, "hierarchy-cache")
+        try:
+            view.HierarchyCacheMemory = 64
+            self.assertEqual(server.GetHierarchyCacheMemoryLimitMiB(), 64)
+            view.HierarchyCacheDirectory = directory
+            self.assertEqual(server.GetHierarchyCacheDirectory(), directory)
+            # A new view's defaults leave the process's settings as they are.
+            other = self.view()
+            self.assertEqual(other.GetClientSideObject().GetHierarchyCacheMemoryLimitMiB(), 64)
+            self.assertEqual(other.GetClientSideObject().GetHierarchyCacheDirectory(), directory)
+            source = self.new(sphere(61, (7, 0, 0)))  # content no other test shows
+            self.new(Show(source, view))
+            view.ResetCamera()
+            Render(view)
+            files = [name for name in os.listdir(directory) if name.endswith(".vtp")]
+            self.assertEqual(len(files), 1)
+            # The same surface in the other view is found in memory, not
+            # built: a build would write its file again.
+            os.remove(os.path.join(directory, files[0]))
+            self.new(Show(source, other))
+            other.ResetCamera()
+            Render(other)
+            self.assertEqual(os.listdir(directory), [])
+            self.assertGreater(leaf_mapper(other).GetObjectNumberOfTriangles(0), 0)
+        finally:
+            view.HierarchyCacheDirectory = ""
+            server.SetHierarchyCacheMemoryLimitMiB(default_mib)
+        self.assertEqual(server.GetHierarchyCacheDirectory(), "")
+
     def test_still_render_is_full_resolution_and_equals_a_render_view(self):
         view = self.view(TargetFrameTime=1)
         source = self.new(sphere(150))
