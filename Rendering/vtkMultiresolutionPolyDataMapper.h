@@ -99,6 +99,7 @@
 #include <utility> // for UploadLeafBuffers
 #include <vector>  // for ProcessSelectorPixelBuffers
 
+class vtkHierarchyBuildQueue;
 class vtkStateStorage;
 
 class TIMECRITICALRENDERING_EXPORT vtkMultiresolutionPolyDataMapper : public vtkOpenGLPolyDataMapper
@@ -277,6 +278,55 @@ public:
   /// Seconds spent refining all view-dependent objects in the last render.
   vtkGetMacro(RefinementTime, double);
 
+  ///@{
+  /**
+   * Background hierarchy builds (default off). On: polydata leaves that
+   * carry no hierarchy (no TOM arrays; with BackgroundHierarchy MERGE_TREE,
+   * no merge tree) are drawn at once, in full as fixed-cost objects, while
+   * their hierarchy is built on worker threads (vtkHierarchyBuildQueue,
+   * keyed by the leaf's content hash, so equal leaves are built once). The
+   * first UpdateObjects() or render after a build finished swaps the
+   * hierarchy in: the objects are read again and the buffers rebuilt,
+   * without executing the pipeline (the object then becomes a TOM, or a
+   * view-dependent front). The builders' messages are reported then, on the
+   * caller's thread; a leaf whose build fails stays drawn in full. A new
+   * input cancels the builds of leaves it no longer has. Picking and
+   * selection report the ids of what is drawn: the leaf's own until the
+   * swap, the hierarchy's (reordered, with vtkOriginalCellIds carried)
+   * after. The leaves' arrays are read by the workers while the mapper
+   * holds them: a pipeline must not refill the same arrays in place while
+   * builds run (VTK's and ParaView's filters make new ones at each
+   * execution). Off: such leaves are drawn in full, as before.
+   */
+  void SetBackgroundBuilds(bool on);
+  vtkGetMacro(BackgroundBuilds, bool);
+  vtkBooleanMacro(BackgroundBuilds, bool);
+  /// vtkHierarchyBuildQueue::Hierarchies: TOTALLY_ORDERED_MESH (0, default) or MERGE_TREE (1).
+  void SetBackgroundHierarchy(int hierarchy);
+  vtkGetMacro(BackgroundHierarchy, int);
+  /**
+   * Leaves drawn without their hierarchy while its build is pending
+   * (queued, running, or finished and not yet swapped in), as of the last
+   * UpdateObjects() or render.
+   */
+  int GetNumberOfPendingHierarchies() const;
+  /// Hierarchies swapped in so far (each leaf's build once it is used).
+  vtkGetMacro(NumberOfSwappedHierarchies, vtkIdType);
+  /**
+   * Block until every pending build of the current leaves has finished and
+   * is swapped in (for scripts and tests that need the final image). Does
+   * nothing when BackgroundBuilds is off.
+   */
+  void WaitForHierarchies();
+#ifndef __VTK_WRAP__
+  /**
+   * The mapper's build queue (created with the first background build):
+   * its thread count, result store, statistics and test hooks.
+   */
+  vtkHierarchyBuildQueue* GetBuildQueue();
+#endif
+  ///@}
+
   /// Bounds of the whole input (all leaves).
   void ComputeBounds() override;
   double* GetBounds() VTK_SIZEHINT(6) override;
@@ -378,6 +428,9 @@ protected:
   bool HighlightRefinement = true;
   double HighlightFactor = 0.5;
   double RefinementTime = 0.0;
+  bool BackgroundBuilds = false;
+  int BackgroundHierarchy = 0;
+  vtkIdType NumberOfSwappedHierarchies = 0;
 
 private:
   vtkMultiresolutionPolyDataMapper(const vtkMultiresolutionPolyDataMapper&) = delete;
@@ -397,6 +450,7 @@ private:
     vtkRenderer* ren, const std::vector<std::pair<std::string, int>>& appended);
   void PatchStripOffset();
   void ReadObjects(vtkDataObject* input);
+  bool TakeBuiltHierarchies(); ///< whether a finished build is to be swapped in
   void FillIndexBuffer(vtkRenderer* ren, vtkActor* act, bool rebuild);
   bool UpdateSlots();
   void UploadIndexRanges();

@@ -799,6 +799,40 @@ void vtkTimeCriticalRenderer::StillRender()
   this->Internal->StillRequested = false;
 }
 
+void vtkTimeCriticalRenderer::WaitForHierarchies()
+{
+  vtkCollectionSimpleIterator it;
+  vtkPropCollection* props = this->GetViewProps();
+  props->InitTraversal(it);
+  while (vtkProp* prop = props->GetNextProp(it))
+  {
+    vtkActor* actor = vtkActor::SafeDownCast(prop);
+    if (auto* mapper =
+          actor ? vtkMultiresolutionPolyDataMapper::SafeDownCast(actor->GetMapper()) : nullptr)
+    {
+      mapper->WaitForHierarchies();
+    }
+  }
+}
+
+int vtkTimeCriticalRenderer::GetNumberOfPendingHierarchies()
+{
+  int pending = 0;
+  vtkCollectionSimpleIterator it;
+  vtkPropCollection* props = this->GetViewProps();
+  props->InitTraversal(it);
+  while (vtkProp* prop = props->GetNextProp(it))
+  {
+    vtkActor* actor = vtkActor::SafeDownCast(prop);
+    if (auto* mapper =
+          actor ? vtkMultiresolutionPolyDataMapper::SafeDownCast(actor->GetMapper()) : nullptr)
+    {
+      pending += mapper->GetNumberOfPendingHierarchies();
+    }
+  }
+  return pending;
+}
+
 double vtkTimeCriticalRenderer::GetEffectiveTargetFrameTime()
 {
   if (this->StillRendering)

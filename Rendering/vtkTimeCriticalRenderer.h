@@ -201,6 +201,18 @@ public:
 
   ///@{
   /**
+   * Background hierarchy builds (vtkMultiresolutionPolyDataMapper::
+   * SetBackgroundBuilds): block until every multiresolution mapper of this
+   * renderer's actors has its pending builds finished and swapped in (for
+   * scripts and tests that need the final image; the next render uses
+   * them), and the number of leaves still drawn without their hierarchy.
+   */
+  void WaitForHierarchies();
+  int GetNumberOfPendingHierarchies();
+  ///@}
+
+  ///@{
+  /**
    * While on, every render is a still frame: every object at full
    * resolution, as StillRender() draws. For applications that decide
    * themselves which renders are still (ParaView's still renders: at rest,
