@@ -21,7 +21,9 @@ void vtkMultiresolutionPolyDataMapper::SetBackgroundBuilds(bool on)
     return;
   }
   this->BackgroundBuilds = on;
-  this->Internal->ClearBackground();
+  // On: the current leaves are read again and submitted. Off: what is drawn
+  // stays until the input changes (no leaf is left without its reading).
+  this->Internal->ClearBackground(on);
   this->Modified();
 }
 
@@ -40,27 +42,34 @@ void vtkMultiresolutionPolyDataMapper::SetBackgroundHierarchy(int hierarchy)
     return;
   }
   this->BackgroundHierarchy = hierarchy;
-  this->Internal->ClearBackground();
+  this->Internal->ClearBackground(this->BackgroundBuilds);
   this->Modified();
 }
 
-void vtkMultiresolutionPolyDataMapper::Internals::ClearBackground()
+void vtkMultiresolutionPolyDataMapper::Internals::ClearBackground(bool read)
 {
   if (this->Queue)
   {
     this->Queue->CancelAll();
   }
+  // The objects may draw finished builds: those go at the next read.
+  this->BackgroundReset = true;
+  this->ForceRead = this->ForceRead || read;
+}
+
+void vtkMultiresolutionPolyDataMapper::Internals::ForgetBuilds()
+{
   this->Built.clear();
   this->Failed.clear();
   this->Hashes.clear();
   this->CurrentKeys.clear();
   this->PendingHierarchies = 0;
-  this->ForceRead = true;
+  this->BackgroundReset = false;
 }
 
 int vtkMultiresolutionPolyDataMapper::GetNumberOfPendingHierarchies() const
 {
-  return this->Internal->PendingHierarchies;
+  return this->BackgroundBuilds ? this->Internal->PendingHierarchies : 0;
 }
 
 vtkHierarchyBuildQueue* vtkMultiresolutionPolyDataMapper::GetBuildQueue()
@@ -93,7 +102,7 @@ void vtkMultiresolutionPolyDataMapper::WaitForHierarchies()
 bool vtkMultiresolutionPolyDataMapper::TakeBuiltHierarchies()
 {
   Internals& in = *this->Internal;
-  if (!in.Queue || in.Queue->GetNumberOfFinished() == 0)
+  if (!this->BackgroundBuilds || !in.Queue || in.Queue->GetNumberOfFinished() == 0)
   {
     return false; // the usual frame: no lock held long, nothing allocated
   }

@@ -270,7 +270,8 @@ struct vtkMultiresolutionPolyDataMapper::Internals
   std::vector<std::pair<uint64_t, unsigned int>> CurrentKeys;
   std::vector<vtkHierarchyBuildQueue::Result> Taken;
   int PendingHierarchies = 0;
-  bool ForceRead = false; // a background setting changed: read the objects again
+  bool ForceRead = false;       // a background setting changed: read the objects again
+  bool BackgroundReset = false; // forget the builds at the next read
 
   bool WarnedNonTOM = false;
   bool WarnedBadTree = false;
@@ -326,7 +327,8 @@ struct vtkMultiresolutionPolyDataMapper::Internals
   void SubstituteBuiltLeaves(vtkMultiresolutionPolyDataMapper* self, Leaves& leaves,
     std::vector<char>& explained);
   uint64_t KeyOf(vtkPolyData* leaf, std::unordered_map<vtkPolyData*, LeafHash>& next);
-  void ClearBackground();
+  void ClearBackground(bool read); ///< a setting changed; read: read the leaves again
+  void ForgetBuilds();              ///< at a read, once no object draws them
 
   // View-dependent fronts (Fronts.cxx): refines one front for the view;
   // returns whether it moved.

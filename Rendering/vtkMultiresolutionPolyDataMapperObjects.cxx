@@ -74,6 +74,10 @@ void vtkMultiresolutionPolyDataMapper::ReadObjects(vtkDataObject* input)
   in.ReleaseObjects(input);
   Internals::Leaves leaves = in.CollectLeaves(this, input);
   std::vector<char> explained(leaves.size(), 0); // drawn without a hierarchy for a known reason
+  if (in.BackgroundReset || !this->BackgroundBuilds)
+  {
+    in.ForgetBuilds();
+  }
   if (this->BackgroundBuilds)
   {
     in.SubstituteBuiltLeaves(this, leaves, explained);

@@ -241,7 +241,8 @@ public:
   /**
    * Cost model calibration. AutomaticCalibration (default on) runs
    * Calibrate()'s renders in the first render with objects, still or not
-   * (unless the policy is FULL_RESOLUTION), so that no interactive frame
+   * (unless the policy is FULL_RESOLUTION; with background hierarchy builds,
+   * the first in which not every object still waits for its hierarchy), so that no interactive frame
    * pays for it; OnlineCalibration (default on) refines the coefficients
    * from every measured frame, within lower bounds (see the class comment).
    * Turn both off and set the coefficients for deterministic resolutions

@@ -5,9 +5,11 @@
 
 #include "vtkActor.h"
 #include "vtkActorCollection.h"
+#include "vtkCommand.h"
 #include "vtkCollectionIterator.h"
 #include "vtkDataRepresentation.h"
 #include "vtkMultiProcessController.h"
+#include "vtkHierarchyBuildQueue.h"
 #include "vtkMultiresolutionPolyDataMapper.h"
 #include "vtkObjectFactory.h"
 #include "vtkObjectFactoryCollection.h"
@@ -19,6 +21,9 @@
 #include "vtkSMProxyManager.h"
 #include "vtkSMSessionProxyManager.h"
 #include "vtkProcessModule.h"
+#include "vtkRenderWindowInteractor.h"
+#include "vtkTimeCriticalCompositeRepresentation.h"
+#include "vtkTimeCriticalSurfaceRepresentation.h"
 #include "vtkTextProperty.h"
 #include "vtkTimeCriticalRenderer.h"
 #include "vtkVersion.h"
@@ -229,7 +234,17 @@ vtkPVTimeCriticalRenderView::vtkPVTimeCriticalRenderView()
 }
 
 //------------------------------------------------------------------------------
-vtkPVTimeCriticalRenderView::~vtkPVTimeCriticalRenderView() = default;
+vtkPVTimeCriticalRenderView::~vtkPVTimeCriticalRenderView()
+{
+  if (vtkRenderWindowInteractor* interactor = this->TimerInteractor)
+  {
+    if (this->HierarchyTimer != 0)
+    {
+      interactor->DestroyTimer(this->HierarchyTimer);
+    }
+    interactor->RemoveObserver(this->TimerObserver);
+  }
+}
 
 //------------------------------------------------------------------------------
 vtkTimeCriticalRenderer* vtkPVTimeCriticalRenderView::GetTimeCriticalRenderer()
@@ -321,6 +336,114 @@ void vtkPVTimeCriticalRenderView::SetLODRenderingThreshold(double)
 }
 
 //------------------------------------------------------------------------------
+void vtkPVTimeCriticalRenderView::SetBackgroundHierarchyBuilds(bool on)
+{
+  if (on != this->BackgroundHierarchyBuilds)
+  {
+    this->BackgroundHierarchyBuilds = on;
+    this->ApplyBackgroundBuilds();
+    this->Modified();
+  }
+}
+
+void vtkPVTimeCriticalRenderView::ApplyBackgroundBuilds()
+{
+  for (int i = 0; i < this->GetNumberOfRepresentations(); ++i)
+  {
+    auto* composite =
+      vtkTimeCriticalCompositeRepresentation::SafeDownCast(this->GetRepresentation(i));
+    vtkTimeCriticalSurfaceRepresentation* surface =
+      composite ? composite->GetTimeCriticalSurface() : nullptr;
+    if (surface)
+    {
+      surface->SetBackgroundBuilds(this->BackgroundHierarchyBuilds);
+    }
+  }
+}
+
+void vtkPVTimeCriticalRenderView::Update()
+{
+  // Representations added since the setting changed get it before they update.
+  this->ApplyBackgroundBuilds();
+  this->Superclass::Update();
+}
+
+void vtkPVTimeCriticalRenderView::WaitForHierarchies()
+{
+  if (vtkTimeCriticalRenderer* renderer = this->GetTimeCriticalRenderer())
+  {
+    renderer->WaitForHierarchies();
+  }
+}
+
+int vtkPVTimeCriticalRenderView::GetNumberOfPendingHierarchies()
+{
+  vtkTimeCriticalRenderer* renderer = this->GetTimeCriticalRenderer();
+  return renderer ? renderer->GetNumberOfPendingHierarchies() : 0;
+}
+
+bool vtkPVTimeCriticalRenderView::HierarchiesFinished()
+{
+  vtkTimeCriticalRenderer* renderer = this->GetTimeCriticalRenderer();
+  vtkActorCollection* actors = renderer ? renderer->GetActors() : nullptr;
+  vtkCollectionSimpleIterator it;
+  if (actors)
+  {
+    actors->InitTraversal(it);
+  }
+  while (vtkActor* actor = actors ? actors->GetNextActor(it) : nullptr)
+  {
+    auto* mapper = vtkMultiresolutionPolyDataMapper::SafeDownCast(actor->GetMapper());
+    if (mapper && mapper->GetBackgroundBuilds() &&
+      mapper->GetBuildQueue()->GetNumberOfFinished() > 0)
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
+void vtkPVTimeCriticalRenderView::ScheduleHierarchyCheck()
+{
+  // Only where an interactor can render the view (the GUI): its one-shot
+  // timer polls the builds, and its Render() becomes a render of the view's
+  // proxy, so a finished hierarchy shows without user action.
+  vtkRenderWindowInteractor* interactor = this->GetInteractor();
+  if (!interactor || this->HierarchyTimer != 0 || this->GetNumberOfPendingHierarchies() == 0)
+  {
+    return;
+  }
+  if (interactor != this->TimerInteractor)
+  {
+    if (vtkRenderWindowInteractor* previous = this->TimerInteractor)
+    {
+      previous->RemoveObserver(this->TimerObserver);
+    }
+    this->TimerInteractor = interactor;
+    this->TimerObserver = interactor->AddObserver(
+      vtkCommand::TimerEvent, this, &vtkPVTimeCriticalRenderView::OnHierarchyTimer);
+  }
+  this->HierarchyTimer = interactor->CreateOneShotTimer(200);
+}
+
+void vtkPVTimeCriticalRenderView::OnHierarchyTimer(vtkObject*, unsigned long, void* callData)
+{
+  if (this->HierarchyTimer == 0 || !callData || *static_cast<int*>(callData) != this->HierarchyTimer)
+  {
+    return; // someone else's timer
+  }
+  this->HierarchyTimer = 0;
+  if (this->HierarchiesFinished())
+  {
+    this->TimerInteractor->Render(); // schedules the next check if builds remain
+  }
+  else
+  {
+    this->ScheduleHierarchyCheck();
+  }
+}
+
+//------------------------------------------------------------------------------
 void vtkPVTimeCriticalRenderView::Render(bool interactive, bool skip_rendering)
 {
   if (vtkTimeCriticalRenderer* renderer = this->GetTimeCriticalRenderer())
@@ -350,6 +473,10 @@ void vtkPVTimeCriticalRenderView::Render(bool interactive, bool skip_rendering)
   if (this->ShowStatistics && this->RendersOnServer)
   {
     this->FetchServerStatistics(); // for the overlay of the next render
+  }
+  if (this->BackgroundHierarchyBuilds)
+  {
+    this->ScheduleHierarchyCheck();
   }
 }
 
@@ -526,5 +653,6 @@ void vtkPVTimeCriticalRenderView::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ColorByResolution: " << this->ColorByResolution << "\n";
   os << indent << "FullResolutionStillRenders: " << this->FullResolutionStillRenders << "\n";
   os << indent << "ShowStatistics: " << this->ShowStatistics << "\n";
+  os << indent << "BackgroundHierarchyBuilds: " << this->BackgroundHierarchyBuilds << "\n";
   os << indent << "TimeCriticalRenderer: " << this->GetTimeCriticalRenderer() << "\n";
 }

@@ -23,6 +23,16 @@
  * shows the server's (vtkPVTimeCriticalStatisticsInformation, gathered after
  * each render while ShowStatistics is on).
  *
+ * BackgroundHierarchyBuilds (default off): surfaces are shown at once, in
+ * full, while their hierarchies are built on worker threads; each is used
+ * from the first render after its build finished. In the GUI (builtin
+ * session) the view then renders by itself (a one-shot timer of its
+ * interactor polls the builds), so the hierarchy appears without user
+ * action; pvpython and pvbatch have no interactor: scripts render again or
+ * call WaitForHierarchies() first. A client of a separate server shows the
+ * hierarchies at its next render. Under MPI every rank builds its own
+ * pieces; swapping them in needs no communication, so all ranks keep taking
+ * the same render path.
  * Parallel (pvbatch, pvserver with several ranks): each rank plans its own
  * objects. Start-up calibration renders would be composited by every rank and
  * must not run on one rank alone, so with more than one rank the cost model
@@ -45,6 +55,7 @@
 #include <string> // for std::string
 #include <vector> // for std::vector
 
+class vtkRenderWindowInteractor;
 class vtkSMProxy;
 class vtkTimeCriticalRenderer;
 
@@ -147,11 +158,36 @@ public:
   /// Has no effect: the frame-time budget replaces ParaView's LOD in this view.
   void SetLODRenderingThreshold(double threshold);
 
+  ///@{
+  /**
+   * Background hierarchy builds for every time-critical surface of the view
+   * (vtkTimeCriticalSurfaceRepresentation::SetBackgroundBuilds). Off by
+   * default: every surface then has its hierarchy when first drawn, as
+   * tests, benchmarks and scripts that time interactive frames expect.
+   */
+  void SetBackgroundHierarchyBuilds(bool on);
+  vtkGetMacro(BackgroundHierarchyBuilds, bool);
+  ///@}
+
+  /**
+   * Block until every background build of this process's surfaces has
+   * finished and is swapped in (the next render uses them all).
+   */
+  void WaitForHierarchies();
+
+  /// Surfaces of this process drawn without their hierarchy while it is built.
+  int GetNumberOfPendingHierarchies();
+
 protected:
   vtkPVTimeCriticalRenderView();
   ~vtkPVTimeCriticalRenderView() override;
 
   void Render(bool interactive, bool skip_rendering) override;
+  void Update() override;
+  void ApplyBackgroundBuilds();
+  void ScheduleHierarchyCheck();
+  void OnHierarchyTimer(vtkObject* caller, unsigned long event, void* callData);
+  bool HierarchiesFinished();
   void AddRepresentationInternal(vtkDataRepresentation* rep) override;
   void GatherRankStatistics();
   void FetchServerStatistics();
@@ -160,6 +196,10 @@ protected:
   bool ColorByResolution = false;
   bool FullResolutionStillRenders = true;
   bool ShowStatistics = false;
+  bool BackgroundHierarchyBuilds = false;
+  int HierarchyTimer = 0;                        // one-shot timer id, 0: none
+  vtkWeakPointer<vtkRenderWindowInteractor> TimerInteractor; // observed for it
+  unsigned long TimerObserver = 0;
   bool WarnedAboutOtherRepresentations = false;
   std::vector<double> RankStatistics; // per rank: measured, predicted, target, triangles, fixed
   std::string ServerStatisticsText;   // a client's copy of the server's statistics

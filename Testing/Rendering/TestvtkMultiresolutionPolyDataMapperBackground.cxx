@@ -292,6 +292,32 @@ TEST(MultiresolutionMapperBackground, NothingAllocatedPerFrameWhileBuildsRun)
   gate.Release();
 }
 
+TEST(MultiresolutionMapperBackground, SwitchingOffKeepsWhatIsDrawnUntilTheInputChanges)
+{
+  auto surface = Surface();
+  vtkNew<vtkMultiresolutionPolyDataMapper> mapper;
+  mapper->SetInputData(surface);
+  Log log(mapper);
+  Scene scene(mapper);
+  scene.Render();
+  EXPECT_EQ(log.Warnings.Count, 1); // not a TOM, drawn in full (background off)
+  mapper->BackgroundBuildsOn();     // the current leaf is read again and submitted
+  mapper->WaitForHierarchies();
+  EXPECT_TRUE(mapper->GetObjectIsTOM(0));
+  mapper->BackgroundBuildsOff();
+  scene.Render();
+  EXPECT_TRUE(mapper->GetObjectIsTOM(0)); // kept: no re-read for the setting alone
+  EXPECT_EQ(mapper->GetNumberOfPendingHierarchies(), 0);
+  auto copy = vtkSmartPointer<vtkPolyData>::New();
+  copy->DeepCopy(surface);
+  mapper->SetInputData(copy);
+  scene.Render();
+  EXPECT_FALSE(mapper->GetObjectIsTOM(0)); // a new input, drawn as it is
+  EXPECT_EQ(mapper->GetNumberOfPendingHierarchies(), 0);
+  EXPECT_EQ(mapper->GetBuildQueue()->GetNumberOfPending(), 0);
+  EXPECT_EQ(log.Errors.Count, 0);
+}
+
 TEST(MultiresolutionMapperBackground, BadSettingIsAnError)
 {
   vtkNew<vtkMultiresolutionPolyDataMapper> mapper;
