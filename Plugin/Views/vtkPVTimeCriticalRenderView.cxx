@@ -19,6 +19,7 @@
 #include "vtkPVTimeCriticalStatisticsInformation.h"
 #include "vtkSMProxy.h"
 #include "vtkSMProxyManager.h"
+#include "vtkSMViewProxy.h"
 #include "vtkSMSessionProxyManager.h"
 #include "vtkProcessModule.h"
 #include "vtkRenderWindowInteractor.h"
@@ -382,8 +383,17 @@ int vtkPVTimeCriticalRenderView::GetNumberOfPendingHierarchies()
   return renderer ? renderer->GetNumberOfPendingHierarchies() : 0;
 }
 
-bool vtkPVTimeCriticalRenderView::HierarchiesFinished()
+bool vtkPVTimeCriticalRenderView::HierarchiesToShow()
 {
+  // Builds finished and not yet taken, or hierarchies swapped in since the
+  // last frame drawn (ParaView may update the mappers, through their bounds,
+  // in a pass that draws nothing).
+  return this->CountSwappedHierarchies(true) != this->DisplayedSwaps;
+}
+
+vtkIdType vtkPVTimeCriticalRenderView::CountSwappedHierarchies(bool withFinished)
+{
+  vtkIdType swaps = 0;
   vtkTimeCriticalRenderer* renderer = this->GetTimeCriticalRenderer();
   vtkActorCollection* actors = renderer ? renderer->GetActors() : nullptr;
   vtkCollectionSimpleIterator it;
@@ -394,22 +404,24 @@ bool vtkPVTimeCriticalRenderView::HierarchiesFinished()
   while (vtkActor* actor = actors ? actors->GetNextActor(it) : nullptr)
   {
     auto* mapper = vtkMultiresolutionPolyDataMapper::SafeDownCast(actor->GetMapper());
-    if (mapper && mapper->GetBackgroundBuilds() &&
-      mapper->GetBuildQueue()->GetNumberOfFinished() > 0)
+    if (mapper && mapper->GetBackgroundBuilds())
     {
-      return true;
+      swaps += mapper->GetNumberOfSwappedHierarchies();
+      swaps += withFinished ? mapper->GetBuildQueue()->GetNumberOfFinished() : 0;
     }
   }
-  return false;
+  return swaps;
 }
 
 void vtkPVTimeCriticalRenderView::ScheduleHierarchyCheck()
 {
-  // Only where an interactor can render the view (the GUI): its one-shot
-  // timer polls the builds, and its Render() becomes a render of the view's
-  // proxy, so a finished hierarchy shows without user action.
+  // Only where the view has an interactor (the GUI): a timer of the
+  // interactor polls the builds every 200 ms while any is pending, and a
+  // finished one is shown by a still render of the view's proxy, without
+  // user action.
   vtkRenderWindowInteractor* interactor = this->GetInteractor();
-  if (!interactor || this->HierarchyTimer != 0 || this->GetNumberOfPendingHierarchies() == 0)
+  if (!interactor || this->HierarchyTimer != 0 ||
+    (this->GetNumberOfPendingHierarchies() == 0 && !this->HierarchiesToShow()))
   {
     return;
   }
@@ -423,7 +435,7 @@ void vtkPVTimeCriticalRenderView::ScheduleHierarchyCheck()
     this->TimerObserver = interactor->AddObserver(
       vtkCommand::TimerEvent, this, &vtkPVTimeCriticalRenderView::OnHierarchyTimer);
   }
-  this->HierarchyTimer = interactor->CreateOneShotTimer(200);
+  this->HierarchyTimer = interactor->CreateRepeatingTimer(200);
 }
 
 void vtkPVTimeCriticalRenderView::OnHierarchyTimer(vtkObject*, unsigned long, void* callData)
@@ -432,14 +444,17 @@ void vtkPVTimeCriticalRenderView::OnHierarchyTimer(vtkObject*, unsigned long, vo
   {
     return; // someone else's timer
   }
-  this->HierarchyTimer = 0;
-  if (this->HierarchiesFinished())
+  // A still render of the view's proxy, as the GUI's own renders are (the
+  // interactor's Render() did not render the view in ParaView 5.11's GUI).
+  auto* proxy = vtkSMViewProxy::SafeDownCast(this->FindViewProxy());
+  if (proxy && this->HierarchiesToShow())
   {
-    this->TimerInteractor->Render(); // schedules the next check if builds remain
+    proxy->StillRender();
   }
-  else
+  if (!proxy || (this->GetNumberOfPendingHierarchies() == 0 && !this->HierarchiesToShow()))
   {
-    this->ScheduleHierarchyCheck();
+    this->TimerInteractor->DestroyTimer(this->HierarchyTimer);
+    this->HierarchyTimer = 0;
   }
 }
 
@@ -476,6 +491,10 @@ void vtkPVTimeCriticalRenderView::Render(bool interactive, bool skip_rendering)
   }
   if (this->BackgroundHierarchyBuilds)
   {
+    if (!skip_rendering)
+    {
+      this->DisplayedSwaps = this->CountSwappedHierarchies(false);
+    }
     this->ScheduleHierarchyCheck();
   }
 }
@@ -613,12 +632,11 @@ std::string vtkPVTimeCriticalRenderView::GetStatisticsText()
   return this->GetLocalStatisticsText();
 }
 
-void vtkPVTimeCriticalRenderView::FetchServerStatistics()
+vtkSMProxy* vtkPVTimeCriticalRenderView::FindViewProxy()
 {
-  // This object is the client's half of a view proxy: find the proxy (once)
-  // to ask the server, after the render, when the server waits for requests.
-  vtkSMSessionProxyManager* pxm =
-    vtkSMProxyManager::GetProxyManager()->GetActiveSessionProxyManager();
+  vtkSMProxyManager* manager =
+    vtkSMProxyManager::IsInitialized() ? vtkSMProxyManager::GetProxyManager() : nullptr;
+  vtkSMSessionProxyManager* pxm = manager ? manager->GetActiveSessionProxyManager() : nullptr;
   for (unsigned int i = 0, count = pxm ? pxm->GetNumberOfProxies("views") : 0;
        i < count && !this->ViewProxy; ++i)
   {
@@ -628,7 +646,14 @@ void vtkPVTimeCriticalRenderView::FetchServerStatistics()
       this->ViewProxy = candidate;
     }
   }
-  if (vtkSMProxy* proxy = this->ViewProxy)
+  return this->ViewProxy;
+}
+
+void vtkPVTimeCriticalRenderView::FetchServerStatistics()
+{
+  // This object is the client's half of a view proxy: find the proxy (once)
+  // to ask the server, after the render, when the server waits for requests.
+  if (vtkSMProxy* proxy = this->FindViewProxy())
   {
     vtkNew<vtkPVTimeCriticalStatisticsInformation> statistics;
     // The processes that render (the data server's in a session without a

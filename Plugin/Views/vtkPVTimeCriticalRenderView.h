@@ -26,8 +26,8 @@
  * BackgroundHierarchyBuilds (default off): surfaces are shown at once, in
  * full, while their hierarchies are built on worker threads; each is used
  * from the first render after its build finished. In the GUI (builtin
- * session) the view then renders by itself (a one-shot timer of its
- * interactor polls the builds), so the hierarchy appears without user
+ * session) the view then renders by itself (a timer of its interactor
+ * polls the builds while any is pending), so the hierarchy appears without user
  * action; pvpython and pvbatch have no interactor: scripts render again or
  * call WaitForHierarchies() first. A client of a separate server shows the
  * hierarchies at its next render. Under MPI every rank builds its own
@@ -187,19 +187,22 @@ protected:
   void ApplyBackgroundBuilds();
   void ScheduleHierarchyCheck();
   void OnHierarchyTimer(vtkObject* caller, unsigned long event, void* callData);
-  bool HierarchiesFinished();
+  bool HierarchiesToShow();
+  vtkIdType CountSwappedHierarchies(bool withFinished);
   void AddRepresentationInternal(vtkDataRepresentation* rep) override;
   void GatherRankStatistics();
   void FetchServerStatistics();
+  vtkSMProxy* FindViewProxy(); ///< a client's proxy of this view (builtin session: the same process)
   double GetRankStatistic(int rank, int field);
 
   bool ColorByResolution = false;
   bool FullResolutionStillRenders = true;
   bool ShowStatistics = false;
   bool BackgroundHierarchyBuilds = false;
-  int HierarchyTimer = 0;                        // one-shot timer id, 0: none
+  int HierarchyTimer = 0;                        // the polling timer's id, 0: none
   vtkWeakPointer<vtkRenderWindowInteractor> TimerInteractor; // observed for it
   unsigned long TimerObserver = 0;
+  vtkIdType DisplayedSwaps = 0; // hierarchies swapped in as of the last frame drawn
   bool WarnedAboutOtherRepresentations = false;
   std::vector<double> RankStatistics; // per rank: measured, predicted, target, triangles, fixed
   std::string ServerStatisticsText;   // a client's copy of the server's statistics
