@@ -6,6 +6,7 @@
 #include "vtkMultiresolutionPolyDataMapperInternals.h"
 
 #include "LeafContentHash.h"
+#include "LeafInterimReduction.h"
 #include "vtkMergeTreeFieldData.h"
 #include "vtkPolyData.h"
 #include "vtkPolyDataValidator.h"
@@ -25,6 +26,16 @@ void vtkMultiresolutionPolyDataMapper::SetBackgroundBuilds(bool on)
   // stays until the input changes (no leaf is left without its reading).
   this->Internal->ClearBackground(on);
   this->Modified();
+}
+
+void vtkMultiresolutionPolyDataMapper::SetBackgroundInterimDivisions(int divisions)
+{
+  divisions = divisions < 2 ? 0 : std::min(divisions, 1024);
+  if (divisions != this->BackgroundInterimDivisions)
+  {
+    this->BackgroundInterimDivisions = divisions;
+    this->Internal->Interims.clear(); // made again at the next read of pending leaves
+  }
 }
 
 void vtkMultiresolutionPolyDataMapper::SetBackgroundHierarchy(int hierarchy)
@@ -60,6 +71,7 @@ void vtkMultiresolutionPolyDataMapper::Internals::ClearBackground(bool read)
 void vtkMultiresolutionPolyDataMapper::Internals::ForgetBuilds()
 {
   this->Built.clear();
+  this->Interims.clear();
   this->Failed.clear();
   this->Hashes.clear();
   this->CurrentKeys.clear();
@@ -164,6 +176,22 @@ uint64_t vtkMultiresolutionPolyDataMapper::Internals::KeyOf(
   return entry.Key;
 }
 
+vtkPolyData* vtkMultiresolutionPolyDataMapper::Internals::InterimOf(
+  vtkPolyData* leaf, uint64_t key, int divisions)
+{
+  // Made once per leaf, on this thread: a small fraction of the build's time
+  // for a fraction of the full leaf's drawing time in every frame meanwhile.
+  auto known = this->Interims.find(key);
+  if (known == this->Interims.end())
+  {
+    known = this->Interims
+              .emplace(key,
+                timecritical::BuildInterimReduction(leaf, divisions, InterimMinimumTriangles))
+              .first;
+  }
+  return known->second ? known->second.GetPointer() : leaf;
+}
+
 void vtkMultiresolutionPolyDataMapper::Internals::SubstituteBuiltLeaves(
   vtkMultiresolutionPolyDataMapper* self, Leaves& leaves, std::vector<char>& explained)
 {
@@ -196,6 +224,7 @@ void vtkMultiresolutionPolyDataMapper::Internals::SubstituteBuiltLeaves(
     {
       self->GetBuildQueue()->Submit(key, leaf, hierarchy);
       ++pending;
+      leaves[k].first = this->InterimOf(leaf, key, self->BackgroundInterimDivisions);
     }
   }
   this->Hashes.swap(hashes);
@@ -213,6 +242,10 @@ void vtkMultiresolutionPolyDataMapper::Internals::SubstituteBuiltLeaves(
   for (auto it = this->Built.begin(); it != this->Built.end();)
   {
     it = isKept(it->first) ? std::next(it) : this->Built.erase(it);
+  }
+  for (auto it = this->Interims.begin(); it != this->Interims.end();)
+  {
+    it = isKept(it->first) && !this->Built.count(it->first) ? std::next(it) : this->Interims.erase(it);
   }
   for (auto it = this->Failed.begin(); it != this->Failed.end();)
   {

@@ -266,6 +266,9 @@ struct vtkMultiresolutionPolyDataMapper::Internals
   };
   std::unordered_map<vtkPolyData*, LeafHash> Hashes;
   std::map<uint64_t, vtkSmartPointer<vtkPolyData>> Built;
+  // Stand-ins drawn while pending (null: the leaf itself), by key.
+  std::map<uint64_t, vtkSmartPointer<vtkPolyData>> Interims;
+  static constexpr vtkIdType InterimMinimumTriangles = 4096; // below: drawn in full
   std::set<uint64_t> Failed;
   std::vector<std::pair<uint64_t, unsigned int>> CurrentKeys;
   std::vector<vtkHierarchyBuildQueue::Result> Taken;
@@ -327,6 +330,7 @@ struct vtkMultiresolutionPolyDataMapper::Internals
   void SubstituteBuiltLeaves(vtkMultiresolutionPolyDataMapper* self, Leaves& leaves,
     std::vector<char>& explained);
   uint64_t KeyOf(vtkPolyData* leaf, std::unordered_map<vtkPolyData*, LeafHash>& next);
+  vtkPolyData* InterimOf(vtkPolyData* leaf, uint64_t key, int divisions);
   void ClearBackground(bool read); ///< a setting changed; read: read the leaves again
   void ForgetBuilds();              ///< at a read, once no object draws them
 

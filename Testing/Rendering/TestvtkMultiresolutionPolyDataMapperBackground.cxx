@@ -318,6 +318,45 @@ TEST(MultiresolutionMapperBackground, SwitchingOffKeepsWhatIsDrawnUntilTheInputC
   EXPECT_EQ(log.Errors.Count, 0);
 }
 
+TEST(MultiresolutionMapperBackground, LargeLeavesAreDrawnFromAStandInWhileBuilding)
+{
+  auto surface = Surface(0.0, 240); // about 57K triangles: large enough for a stand-in
+  const vtkIdType full = surface->GetNumberOfPolys();
+  vtkNew<vtkMultiresolutionPolyDataMapper> mapper;
+  mapper->SetInputData(surface);
+  mapper->BackgroundBuildsOn();
+  EXPECT_EQ(mapper->GetBackgroundInterimDivisions(), 64);
+  Gate gate(mapper);
+  Log log(mapper);
+  Scene scene(mapper);
+  scene.Render();
+  gate.WaitForArrivals(1);
+  // The stand-in: far fewer triangles on the leaf's own points, the same silhouette.
+  EXPECT_FALSE(mapper->GetObjectIsTOM(0));
+  EXPECT_EQ(mapper->GetObjectNumberOfVertices(0), surface->GetNumberOfPoints());
+  EXPECT_LT(mapper->GetRenderedTriangles(), full / 4);
+  EXPECT_GT(mapper->GetRenderedTriangles(), full / 50);
+  const int interimPixels = scene.CountForeground();
+  gate.Release();
+  mapper->WaitForHierarchies();
+  scene.Render();
+  EXPECT_TRUE(mapper->GetObjectIsTOM(0));
+  EXPECT_EQ(mapper->GetRenderedTriangles(), full);
+  EXPECT_NEAR(interimPixels, scene.CountForeground(), 0.03 * interimPixels);
+  EXPECT_EQ(log.Warnings.Count, 0);
+  EXPECT_EQ(log.Errors.Count, 0);
+
+  // Off (0): a pending leaf is drawn in full.
+  vtkNew<vtkMultiresolutionPolyDataMapper> plain;
+  plain->SetInputData(surface);
+  plain->BackgroundBuildsOn();
+  plain->SetBackgroundInterimDivisions(0);
+  Gate held(plain);
+  Scene other(plain);
+  other.Render();
+  EXPECT_EQ(plain->GetRenderedTriangles(), full);
+}
+
 TEST(MultiresolutionMapperBackground, BadSettingIsAnError)
 {
   vtkNew<vtkMultiresolutionPolyDataMapper> mapper;
