@@ -23,8 +23,9 @@
  * shows the server's (vtkPVTimeCriticalStatisticsInformation, gathered after
  * each render while ShowStatistics is on).
  *
- * BackgroundHierarchyBuilds (default off): surfaces are shown at once, in
- * full, while their hierarchies are built on worker threads; each is used
+ * BackgroundHierarchyBuilds (default off): surfaces are shown at once (in
+ * full, or large ones from a quick stand-in) while their hierarchies are
+ * built on worker threads; each is used
  * from the first render after its build finished. In the GUI (builtin
  * session) the view then renders by itself (a timer of its interactor
  * polls the builds while any is pending), so the hierarchy appears without user

@@ -21,7 +21,8 @@
  *
  * With BackgroundBuilds on (the view's BackgroundHierarchyBuilds), the
  * builder is skipped: the surfaces are delivered as extracted, drawn at once
- * in full, and the mapper builds their hierarchies on worker threads
+ * (in full, or large ones from a quick stand-in), and the mapper builds
+ * their hierarchies on worker threads
  * (vtkMultiresolutionPolyDataMapper::SetBackgroundBuilds), so that a new
  * time step or an upstream edit never holds the view for a build.
  *
