@@ -268,6 +268,9 @@ void vtkMultiresolutionPolyDataMapper::PrintSelf(ostream& os, vtkIndent indent)
      << " (factor " << this->HighlightFactor << ")\n";
   os << indent << "RefinementTime: " << this->RefinementTime << "\n";
   os << indent << "IndexSlack: " << this->IndexSlack << "\n";
+  os << indent << "BackgroundBuilds: " << this->BackgroundBuilds << " (hierarchy "
+     << this->BackgroundHierarchy << ", pending " << in.PendingHierarchies << ", swapped in "
+     << this->NumberOfSwappedHierarchies << ")\n";
   os << indent << "NumberOfRewrittenObjects: " << this->NumberOfRewrittenObjects << "\n";
   os << indent << "IndexBytesUploaded: " << this->IndexBytesUploaded << "\n";
   os << indent << "CellDataBytesUploaded: " << this->CellDataBytesUploaded << "\n";

@@ -18,6 +18,7 @@
 #include "RefinementSettings.h"
 #include "TOMTraversal.h"
 #include "ViewDependentRefinement.h"
+#include "vtkHierarchyBuildQueue.h"
 
 #include "vtkCompositeDataDisplayAttributes.h"
 #include "vtkNew.h"
@@ -31,7 +32,9 @@
 #include <cstdint>
 #include <map>
 #include <memory>
+#include <set>
 #include <string>
+#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -278,6 +281,30 @@ struct vtkMultiresolutionPolyDataMapper::Internals
   vtkNew<vtkMultiresolutionReleaseProxy> ReleaseProxy;
   vtkOpenGLRenderWindow* Window = nullptr; // holds our GL resources; cleared on release
 
+  // Background builds (Background.cxx): the queue, the content hashes of
+  // the leaves read (kept with the leaves so that their addresses stay
+  // theirs), the finished hierarchies of current leaves by key and the keys
+  // whose build failed (drawn in full), the keys of the last read (with
+  // their block, for messages), and results taken (grow-only).
+  vtkSmartPointer<vtkHierarchyBuildQueue> Queue;
+  struct LeafHash
+  {
+    vtkSmartPointer<vtkPolyData> Leaf;
+    vtkMTimeType Time = 0;
+    uint64_t Key = 0;
+  };
+  std::unordered_map<vtkPolyData*, LeafHash> Hashes;
+  std::map<uint64_t, vtkSmartPointer<vtkPolyData>> Built;
+  // Stand-ins drawn while pending (null: the leaf itself), by key.
+  std::map<uint64_t, vtkSmartPointer<vtkPolyData>> Interims;
+  static constexpr vtkIdType InterimMinimumTriangles = 4096; // below: drawn in full
+  std::set<uint64_t> Failed;
+  std::vector<std::pair<uint64_t, unsigned int>> CurrentKeys;
+  std::vector<vtkHierarchyBuildQueue::Result> Taken;
+  int PendingHierarchies = 0;
+  bool ForceRead = false;       // a background setting changed: read the objects again
+  bool BackgroundReset = false; // forget the builds at the next read
+
   bool WarnedNonTOM = false;
   bool WarnedBadTree = false;
   bool WarnedNonPolyData = false;
@@ -318,12 +345,23 @@ struct vtkMultiresolutionPolyDataMapper::Internals
   void ReserveTOMCopies(const Leaves& leaves);
   static Object StartObject(vtkPolyData* poly, unsigned int flatIndex, const Offsets& offsets);
   void ReadTOM(Object& object, vtkTOMFieldData* reader, TOMCopies& copies);
-  void ReadNonTOM(Object& object, vtkMultiresolutionPolyDataMapper* self, vtkTOMFieldData* reader);
+  void ReadNonTOM(Object& object, vtkMultiresolutionPolyDataMapper* self, vtkTOMFieldData* reader,
+    bool explained);
   void ReadMergeTree(
     Object& object, vtkMultiresolutionPolyDataMapper* self, vtkMergeTreeFieldData* treeReader);
   void AddObject(Object&& object, const std::vector<double>& previous, Offsets& offsets);
   void FinishObjects(const Offsets& offsets);
   void BuildSkeleton();
+
+  // Background builds (Background.cxx): each leaf that needs a hierarchy is
+  // replaced by its finished build, or submitted; `explained` marks those
+  // drawn without one for a known reason (pending, or failed with an error).
+  void SubstituteBuiltLeaves(vtkMultiresolutionPolyDataMapper* self, Leaves& leaves,
+    std::vector<char>& explained);
+  uint64_t KeyOf(vtkPolyData* leaf, std::unordered_map<vtkPolyData*, LeafHash>& next);
+  vtkPolyData* InterimOf(vtkPolyData* leaf, uint64_t key, int divisions);
+  void ClearBackground(bool read); ///< a setting changed; read: read the leaves again
+  void ForgetBuilds();              ///< at a read, once no object draws them
 
   // View-dependent fronts (Fronts.cxx): refines one front for the view;
   // returns whether it moved.

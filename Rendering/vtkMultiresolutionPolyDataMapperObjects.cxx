@@ -54,6 +54,8 @@ void vtkMultiresolutionPolyDataMapper::UpdateObjects()
   {
     changed = in.Watched[i].first->GetMTime() != in.Watched[i].second;
   }
+  // Finished background builds are swapped in by reading the objects again.
+  changed = this->TakeBuiltHierarchies() || changed || in.ForceRead;
   if (changed)
   {
     this->ReadObjects(input);
@@ -71,7 +73,16 @@ void vtkMultiresolutionPolyDataMapper::ReadObjects(vtkDataObject* input)
     previous[i] = in.Objects[i].Resolution;
   }
   in.ReleaseObjects(input);
-  const Internals::Leaves leaves = in.CollectLeaves(this, input);
+  Internals::Leaves leaves = in.CollectLeaves(this, input);
+  std::vector<char> explained(leaves.size(), 0); // drawn without a hierarchy for a known reason
+  if (in.BackgroundReset || !this->BackgroundBuilds)
+  {
+    in.ForgetBuilds();
+  }
+  if (this->BackgroundBuilds)
+  {
+    in.SubstituteBuiltLeaves(this, leaves, explained);
+  }
 
   // Locals: a reader keeps a copy of the last mesh it read.
   vtkNew<vtkTOMFieldData> reader;
@@ -82,8 +93,9 @@ void vtkMultiresolutionPolyDataMapper::ReadObjects(vtkDataObject* input)
   Internals::Offsets offsets;
   in.MaxObjectTriangles = 0;
   in.MaxSurfaceIndices = in.MaxWireIndices = in.MaxPointIndices = 0;
-  for (const auto& leaf : leaves)
+  for (size_t k = 0; k < leaves.size(); ++k)
   {
+    const auto& leaf = leaves[k];
     vtkPolyData* poly = leaf.first;
     if (poly->GetNumberOfPoints() < 1)
     {
@@ -110,7 +122,7 @@ void vtkMultiresolutionPolyDataMapper::ReadObjects(vtkDataObject* input)
     }
     else
     {
-      in.ReadNonTOM(object, this, reader);
+      in.ReadNonTOM(object, this, reader, explained[k] != 0);
     }
     if (object.IsTOM && vtkMergeTreeFieldData::HasMergeTreeArrays(poly))
     {
@@ -137,6 +149,7 @@ void vtkMultiresolutionPolyDataMapper::Internals::ReleaseObjects(vtkDataObject* 
   this->CompactValid = false;
   this->Input = input;
   this->InputTime = input ? input->GetMTime() : 0;
+  this->ForceRead = false;
   ++this->ResolutionVersion;
 }
 
@@ -266,9 +279,11 @@ void vtkMultiresolutionPolyDataMapper::Internals::ReadTOM(
 }
 
 void vtkMultiresolutionPolyDataMapper::Internals::ReadNonTOM(
-  Object& object, vtkMultiresolutionPolyDataMapper* self, vtkTOMFieldData* reader)
+  Object& object, vtkMultiresolutionPolyDataMapper* self, vtkTOMFieldData* reader, bool explained)
 {
-  if (!this->WarnedNonTOM)
+  // Leaves whose hierarchy is being built (or failed with an error) are not
+  // warned about.
+  if (!this->WarnedNonTOM && !explained)
   {
     vtkWarningWithObjectMacro(self, "Block " << object.FlatIndex
                                              << " is not a valid TOM, rendering it at full "

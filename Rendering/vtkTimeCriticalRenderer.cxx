@@ -899,9 +899,16 @@ void vtkTimeCriticalRenderer::DeviceRender()
   // UseDesiredUpdateRate every frame before the first drag is a still frame;
   // waiting for an adaptive one would put the calibration's seconds into the
   // user's first interaction.
+  // With background hierarchy builds, objects that all still wait for their
+  // hierarchy have no resolution to vary: calibration waits for the first.
+  auto awaitingHierarchies = [this, &in]() {
+    return std::all_of(in.Coarsest.begin(), in.Coarsest.end(),
+             [](double coarsest) { return !(coarsest < 1.0); }) &&
+      this->GetNumberOfPendingHierarchies() > 0;
+  };
   if (in.CalibrationRequested ||
     (this->AutomaticCalibration && !this->Calibrated && !this->CalibrationAttempted &&
-      this->Policy != FULL_RESOLUTION && !in.ObjectActor.empty()))
+      this->Policy != FULL_RESOLUTION && !in.ObjectActor.empty() && !awaitingHierarchies()))
   {
     const bool automatic = !in.CalibrationRequested;
     in.CalibrationRequested = false;

@@ -211,6 +211,18 @@ public:
 
   ///@{
   /**
+   * Background hierarchy builds (vtkMultiresolutionPolyDataMapper::
+   * SetBackgroundBuilds): block until every multiresolution mapper of this
+   * renderer's actors has its pending builds finished and swapped in (for
+   * scripts and tests that need the final image; the next render uses
+   * them), and the number of leaves still drawn without their hierarchy.
+   */
+  void WaitForHierarchies();
+  int GetNumberOfPendingHierarchies();
+  ///@}
+
+  ///@{
+  /**
    * While on, every render is a still frame: every object at full
    * resolution, as StillRender() draws. For applications that decide
    * themselves which renders are still (ParaView's still renders: at rest,
@@ -239,7 +251,8 @@ public:
   /**
    * Cost model calibration. AutomaticCalibration (default on) runs
    * Calibrate()'s renders in the first render with objects, still or not
-   * (unless the policy is FULL_RESOLUTION), so that no interactive frame
+   * (unless the policy is FULL_RESOLUTION; with background hierarchy builds,
+   * the first in which not every object still waits for its hierarchy), so that no interactive frame
    * pays for it; OnlineCalibration (default on) refines the coefficients
    * from every measured frame, within lower bounds (see the class comment).
    * Turn both off and set the coefficients for deterministic resolutions

@@ -6,9 +6,11 @@
 #include "vtkActor.h"
 #include "vtkActorCollection.h"
 #include "vtkCollectionIterator.h"
+#include "vtkCommand.h"
 #include "vtkCameraPass.h"
 #include "vtkDataRepresentation.h"
 #include "vtkHierarchyBuildCache.h"
+#include "vtkHierarchyBuildQueue.h"
 #include "vtkIceTCompositePass.h"
 #include "vtkImageProcessingPass.h"
 #include "vtkMultiProcessController.h"
@@ -21,8 +23,12 @@
 #include "vtkPVTimeCriticalStatisticsInformation.h"
 #include "vtkSMProxy.h"
 #include "vtkSMProxyManager.h"
+#include "vtkSMViewProxy.h"
 #include "vtkSMSessionProxyManager.h"
 #include "vtkProcessModule.h"
+#include "vtkRenderWindowInteractor.h"
+#include "vtkTimeCriticalCompositeRepresentation.h"
+#include "vtkTimeCriticalSurfaceRepresentation.h"
 #include "vtkTextProperty.h"
 #include "vtkTimeCriticalRenderer.h"
 #include "vtkVersion.h"
@@ -233,7 +239,17 @@ vtkPVTimeCriticalRenderView::vtkPVTimeCriticalRenderView()
 }
 
 //------------------------------------------------------------------------------
-vtkPVTimeCriticalRenderView::~vtkPVTimeCriticalRenderView() = default;
+vtkPVTimeCriticalRenderView::~vtkPVTimeCriticalRenderView()
+{
+  if (vtkRenderWindowInteractor* interactor = this->TimerInteractor)
+  {
+    if (this->HierarchyTimer != 0)
+    {
+      interactor->DestroyTimer(this->HierarchyTimer);
+    }
+    interactor->RemoveObserver(this->TimerObserver);
+  }
+}
 
 //------------------------------------------------------------------------------
 vtkTimeCriticalRenderer* vtkPVTimeCriticalRenderView::GetTimeCriticalRenderer()
@@ -366,6 +382,128 @@ std::string vtkPVTimeCriticalRenderView::GetHierarchyCacheDirectory()
 }
 
 //------------------------------------------------------------------------------
+void vtkPVTimeCriticalRenderView::SetBackgroundHierarchyBuilds(bool on)
+{
+  if (on != this->BackgroundHierarchyBuilds)
+  {
+    this->BackgroundHierarchyBuilds = on;
+    this->ApplyBackgroundBuilds();
+    this->Modified();
+  }
+}
+
+void vtkPVTimeCriticalRenderView::ApplyBackgroundBuilds()
+{
+  for (int i = 0; i < this->GetNumberOfRepresentations(); ++i)
+  {
+    auto* composite =
+      vtkTimeCriticalCompositeRepresentation::SafeDownCast(this->GetRepresentation(i));
+    vtkTimeCriticalSurfaceRepresentation* surface =
+      composite ? composite->GetTimeCriticalSurface() : nullptr;
+    if (surface)
+    {
+      surface->SetBackgroundBuilds(this->BackgroundHierarchyBuilds);
+    }
+  }
+}
+
+void vtkPVTimeCriticalRenderView::Update()
+{
+  // Representations added since the setting changed get it before they update.
+  this->ApplyBackgroundBuilds();
+  this->Superclass::Update();
+}
+
+void vtkPVTimeCriticalRenderView::WaitForHierarchies()
+{
+  if (vtkTimeCriticalRenderer* renderer = this->GetTimeCriticalRenderer())
+  {
+    renderer->WaitForHierarchies();
+  }
+}
+
+int vtkPVTimeCriticalRenderView::GetNumberOfPendingHierarchies()
+{
+  vtkTimeCriticalRenderer* renderer = this->GetTimeCriticalRenderer();
+  return renderer ? renderer->GetNumberOfPendingHierarchies() : 0;
+}
+
+bool vtkPVTimeCriticalRenderView::HierarchiesToShow()
+{
+  // Builds finished and not yet taken, or hierarchies swapped in since the
+  // last frame drawn (ParaView may update the mappers, through their bounds,
+  // in a pass that draws nothing).
+  return this->CountSwappedHierarchies(true) != this->DisplayedSwaps;
+}
+
+vtkIdType vtkPVTimeCriticalRenderView::CountSwappedHierarchies(bool withFinished)
+{
+  vtkIdType swaps = 0;
+  vtkTimeCriticalRenderer* renderer = this->GetTimeCriticalRenderer();
+  vtkActorCollection* actors = renderer ? renderer->GetActors() : nullptr;
+  vtkCollectionSimpleIterator it;
+  if (actors)
+  {
+    actors->InitTraversal(it);
+  }
+  while (vtkActor* actor = actors ? actors->GetNextActor(it) : nullptr)
+  {
+    auto* mapper = vtkMultiresolutionPolyDataMapper::SafeDownCast(actor->GetMapper());
+    if (mapper && mapper->GetBackgroundBuilds())
+    {
+      swaps += mapper->GetNumberOfSwappedHierarchies();
+      swaps += withFinished ? mapper->GetBuildQueue()->GetNumberOfFinished() : 0;
+    }
+  }
+  return swaps;
+}
+
+void vtkPVTimeCriticalRenderView::ScheduleHierarchyCheck()
+{
+  // Only where the view has an interactor (the GUI): a timer of the
+  // interactor polls the builds every 200 ms while any is pending, and a
+  // finished one is shown by a still render of the view's proxy, without
+  // user action.
+  vtkRenderWindowInteractor* interactor = this->GetInteractor();
+  if (!interactor || this->HierarchyTimer != 0 ||
+    (this->GetNumberOfPendingHierarchies() == 0 && !this->HierarchiesToShow()))
+  {
+    return;
+  }
+  if (interactor != this->TimerInteractor)
+  {
+    if (vtkRenderWindowInteractor* previous = this->TimerInteractor)
+    {
+      previous->RemoveObserver(this->TimerObserver);
+    }
+    this->TimerInteractor = interactor;
+    this->TimerObserver = interactor->AddObserver(
+      vtkCommand::TimerEvent, this, &vtkPVTimeCriticalRenderView::OnHierarchyTimer);
+  }
+  this->HierarchyTimer = interactor->CreateRepeatingTimer(200);
+}
+
+void vtkPVTimeCriticalRenderView::OnHierarchyTimer(vtkObject*, unsigned long, void* callData)
+{
+  if (this->HierarchyTimer == 0 || !callData || *static_cast<int*>(callData) != this->HierarchyTimer)
+  {
+    return; // someone else's timer
+  }
+  // A still render of the view's proxy, as the GUI's own renders are (the
+  // interactor's Render() did not render the view in ParaView 5.11's GUI).
+  auto* proxy = vtkSMViewProxy::SafeDownCast(this->FindViewProxy());
+  if (proxy && this->HierarchiesToShow())
+  {
+    proxy->StillRender();
+  }
+  if (!proxy || (this->GetNumberOfPendingHierarchies() == 0 && !this->HierarchiesToShow()))
+  {
+    this->TimerInteractor->DestroyTimer(this->HierarchyTimer);
+    this->HierarchyTimer = 0;
+  }
+}
+
+//------------------------------------------------------------------------------
 void vtkPVTimeCriticalRenderView::Render(bool interactive, bool skip_rendering)
 {
   if (vtkTimeCriticalRenderer* renderer = this->GetTimeCriticalRenderer())
@@ -400,6 +538,14 @@ void vtkPVTimeCriticalRenderView::Render(bool interactive, bool skip_rendering)
   if (this->ShowStatistics && this->RendersOnServer)
   {
     this->FetchServerStatistics(); // for the overlay of the next render
+  }
+  if (this->BackgroundHierarchyBuilds)
+  {
+    if (!skip_rendering)
+    {
+      this->DisplayedSwaps = this->CountSwappedHierarchies(false);
+    }
+    this->ScheduleHierarchyCheck();
   }
 }
 
@@ -596,12 +742,11 @@ std::string vtkPVTimeCriticalRenderView::GetStatisticsText()
   return this->GetLocalStatisticsText();
 }
 
-void vtkPVTimeCriticalRenderView::FetchServerStatistics()
+vtkSMProxy* vtkPVTimeCriticalRenderView::FindViewProxy()
 {
-  // This object is the client's half of a view proxy: find the proxy (once)
-  // to ask the server, after the render, when the server waits for requests.
-  vtkSMSessionProxyManager* pxm =
-    vtkSMProxyManager::GetProxyManager()->GetActiveSessionProxyManager();
+  vtkSMProxyManager* manager =
+    vtkSMProxyManager::IsInitialized() ? vtkSMProxyManager::GetProxyManager() : nullptr;
+  vtkSMSessionProxyManager* pxm = manager ? manager->GetActiveSessionProxyManager() : nullptr;
   for (unsigned int i = 0, count = pxm ? pxm->GetNumberOfProxies("views") : 0;
        i < count && !this->ViewProxy; ++i)
   {
@@ -611,7 +756,14 @@ void vtkPVTimeCriticalRenderView::FetchServerStatistics()
       this->ViewProxy = candidate;
     }
   }
-  if (vtkSMProxy* proxy = this->ViewProxy)
+  return this->ViewProxy;
+}
+
+void vtkPVTimeCriticalRenderView::FetchServerStatistics()
+{
+  // This object is the client's half of a view proxy: find the proxy (once)
+  // to ask the server, after the render, when the server waits for requests.
+  if (vtkSMProxy* proxy = this->FindViewProxy())
   {
     vtkNew<vtkPVTimeCriticalStatisticsInformation> statistics;
     // The processes that render (the data server's in a session without a
@@ -637,5 +789,6 @@ void vtkPVTimeCriticalRenderView::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "FullResolutionStillRenders: " << this->FullResolutionStillRenders << "\n";
   os << indent << "ShowStatistics: " << this->ShowStatistics << "\n";
   os << indent << "CompositingTime: " << this->CompositingTime << "\n";
+  os << indent << "BackgroundHierarchyBuilds: " << this->BackgroundHierarchyBuilds << "\n";
   os << indent << "TimeCriticalRenderer: " << this->GetTimeCriticalRenderer() << "\n";
 }

@@ -23,6 +23,17 @@
  * shows the server's (vtkPVTimeCriticalStatisticsInformation, gathered after
  * each render while ShowStatistics is on).
  *
+ * BackgroundHierarchyBuilds (default off): surfaces are shown at once (in
+ * full, or large ones from a quick stand-in) while their hierarchies are
+ * built on worker threads; each is used
+ * from the first render after its build finished. In the GUI (builtin
+ * session) the view then renders by itself (a timer of its interactor
+ * polls the builds while any is pending), so the hierarchy appears without user
+ * action; pvpython and pvbatch have no interactor: scripts render again or
+ * call WaitForHierarchies() first. A client of a separate server shows the
+ * hierarchies at its next render. Under MPI every rank builds its own
+ * pieces; swapping them in needs no communication, so all ranks keep taking
+ * the same render path.
  * Parallel (pvbatch, pvserver with several ranks): each rank plans its own
  * objects. Start-up calibration renders would be composited by every rank and
  * must not run on one rank alone, so with more than one rank the cost model
@@ -46,6 +57,7 @@
 #include <string> // for std::string
 #include <vector> // for std::vector
 
+class vtkRenderWindowInteractor;
 class vtkSMProxy;
 class vtkTimeCriticalRenderer;
 
@@ -178,21 +190,53 @@ public:
   std::string GetHierarchyCacheDirectory();
   ///@}
 
+  ///@{
+  /**
+   * Background hierarchy builds for every time-critical surface of the view
+   * (vtkTimeCriticalSurfaceRepresentation::SetBackgroundBuilds). Off by
+   * default: every surface then has its hierarchy when first drawn, as
+   * tests, benchmarks and scripts that time interactive frames expect.
+   */
+  void SetBackgroundHierarchyBuilds(bool on);
+  vtkGetMacro(BackgroundHierarchyBuilds, bool);
+  ///@}
+
+  /**
+   * Block until every background build of this process's surfaces has
+   * finished and is swapped in (the next render uses them all).
+   */
+  void WaitForHierarchies();
+
+  /// Surfaces of this process drawn without their hierarchy while it is built.
+  int GetNumberOfPendingHierarchies();
+
 protected:
   vtkPVTimeCriticalRenderView();
   ~vtkPVTimeCriticalRenderView() override;
 
   void Render(bool interactive, bool skip_rendering) override;
+  void Update() override;
+  void ApplyBackgroundBuilds();
+  void ScheduleHierarchyCheck();
+  void OnHierarchyTimer(vtkObject* caller, unsigned long event, void* callData);
+  bool HierarchiesToShow();
+  vtkIdType CountSwappedHierarchies(bool withFinished);
   void AddRepresentationInternal(vtkDataRepresentation* rep) override;
   void GatherRankStatistics();
   void InstallDrawingPass();
   void UpdateCompositingTime(int ranks);
   void FetchServerStatistics();
+  vtkSMProxy* FindViewProxy(); ///< a client's proxy of this view (builtin session: the same process)
   double GetRankStatistic(int rank, int field);
 
   bool ColorByResolution = false;
   bool FullResolutionStillRenders = true;
   bool ShowStatistics = false;
+  bool BackgroundHierarchyBuilds = false;
+  int HierarchyTimer = 0;                        // the polling timer's id, 0: none
+  vtkWeakPointer<vtkRenderWindowInteractor> TimerInteractor; // observed for it
+  unsigned long TimerObserver = 0;
+  vtkIdType DisplayedSwaps = 0; // hierarchies swapped in as of the last frame drawn
   bool WarnedAboutOtherRepresentations = false;
   double HierarchyCacheMemoryLimitMiB = 0.0; // as last set on this view (0: not set)
   std::string HierarchyCacheDirectory;       // as last set on this view

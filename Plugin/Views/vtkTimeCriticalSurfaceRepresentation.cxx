@@ -55,8 +55,27 @@ void vtkTimeCriticalSurfaceRepresentation::SetHierarchy(int hierarchy)
   if (hierarchy != this->HierarchyBuilder->GetHierarchy())
   {
     this->HierarchyBuilder->SetHierarchy(hierarchy);
+    this->GetMultiresolutionMapper()->SetBackgroundHierarchy(
+      this->HierarchyBuilder->GetHierarchy());
     this->MarkModified();
   }
+}
+
+void vtkTimeCriticalSurfaceRepresentation::SetBackgroundBuilds(bool on)
+{
+  if (on == this->BackgroundBuilds)
+  {
+    return;
+  }
+  this->BackgroundBuilds = on;
+  // Background: the extracted surfaces go straight to the delivery and the
+  // mapper builds; otherwise the builder builds before the delivery.
+  this->MultiBlockMaker->SetInputConnection(on ? this->GeometryFilter->GetOutputPort()
+                                               : this->HierarchyBuilder->GetOutputPort());
+  vtkMultiresolutionPolyDataMapper* mapper = this->GetMultiresolutionMapper();
+  mapper->SetBackgroundHierarchy(this->HierarchyBuilder->GetHierarchy());
+  mapper->SetBackgroundBuilds(on);
+  this->MarkModified();
 }
 
 int vtkTimeCriticalSurfaceRepresentation::GetHierarchy()
@@ -138,4 +157,5 @@ void vtkTimeCriticalSurfaceRepresentation::PrintSelf(ostream& os, vtkIndent inde
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "HierarchyBuilder: " << this->HierarchyBuilder << "\n";
+  os << indent << "BackgroundBuilds: " << this->BackgroundBuilds << "\n";
 }

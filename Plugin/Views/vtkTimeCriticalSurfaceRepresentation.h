@@ -19,6 +19,13 @@
  * Hierarchy chooses uniform TOMs (default) or merge trees (view-dependent
  * refinement as well).
  *
+ * With BackgroundBuilds on (the view's BackgroundHierarchyBuilds), the
+ * builder is skipped: the surfaces are delivered as extracted, drawn at once
+ * (in full, or large ones from a quick stand-in), and the mapper builds
+ * their hierarchies on worker threads
+ * (vtkMultiresolutionPolyDataMapper::SetBackgroundBuilds), so that a new
+ * time step or an upstream edit never holds the view for a build.
+ *
  * In parallel every rank builds and draws its own pieces (the data is never
  * gathered onto one rank nor redistributed): translucent surfaces whose
  * pieces interleave in depth are composited in rank order.
@@ -56,6 +63,16 @@ public:
   int GetHierarchy();
   ///@}
 
+  ///@{
+  /**
+   * Skip the synchronous builder and let the mapper build the hierarchies
+   * in the background (see the class comment). Default off; set by
+   * vtkPVTimeCriticalRenderView from its BackgroundHierarchyBuilds.
+   */
+  void SetBackgroundBuilds(bool on);
+  vtkGetMacro(BackgroundBuilds, bool);
+  ///@}
+
   vtkMultiresolutionHierarchyBuilder* GetHierarchyBuilder();
   vtkMultiresolutionPolyDataMapper* GetMultiresolutionMapper();
 
@@ -89,6 +106,7 @@ private:
   void operator=(const vtkTimeCriticalSurfaceRepresentation&) = delete;
 
   vtkNew<vtkMultiresolutionHierarchyBuilder> HierarchyBuilder;
+  bool BackgroundBuilds = false;
 };
 
 #endif

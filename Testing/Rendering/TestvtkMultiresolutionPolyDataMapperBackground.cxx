@@ -1,0 +1,368 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Tests of vtkMultiresolutionPolyDataMapper's background hierarchy builds
+// (vtkMultiresolutionPolyDataMapperBackground.cxx): frames drawn while a
+// build is held on purpose, the hierarchy swapped in once done, stale builds
+// cancelled by a new input, waiting (mapper and renderer), a failed build,
+// merge trees, no allocation per frame while builds run, off by default.
+#include "MultiresolutionMapperTestSupport.h"
+#include "vtkHierarchyBuildQueue.h"
+#include "vtkTimeCriticalRenderer.h"
+
+#include <condition_variable>
+#include <mutex>
+
+namespace
+{
+/// Holds every build at its start until released: the test's "slow build".
+class Gate
+{
+public:
+  explicit Gate(vtkMultiresolutionPolyDataMapper* mapper)
+    : Queue(mapper->GetBuildQueue())
+  {
+    this->Queue->SetProgressHook([this](uint64_t, double progress) {
+      if (progress == 0.0)
+      {
+        std::unique_lock<std::mutex> lock(this->Mutex);
+        ++this->Arrived;
+        this->Changed.notify_all();
+        this->Changed.wait(lock, [this] { return this->Open; });
+      }
+    });
+  }
+  void WaitForArrivals(int count)
+  {
+    std::unique_lock<std::mutex> lock(this->Mutex);
+    this->Changed.wait(lock, [this, count] { return this->Arrived >= count; });
+  }
+  void Release()
+  {
+    std::lock_guard<std::mutex> lock(this->Mutex);
+    this->Open = true;
+    this->Changed.notify_all();
+  }
+
+  ~Gate()
+  {
+    // No worker may still be inside this gate's hook once it is gone.
+    this->Release();
+    this->Queue->WaitAll();
+    this->Queue->SetProgressHook(nullptr);
+  }
+
+private:
+  vtkSmartPointer<vtkHierarchyBuildQueue> Queue;
+  std::mutex Mutex;
+  std::condition_variable Changed;
+  int Arrived = 0;
+  bool Open = false;
+};
+
+/// The mapper's errors and warnings.
+struct Log
+{
+  explicit Log(vtkObject* object)
+    : Errors(object, vtkCommand::ErrorEvent)
+    , Warnings(object, vtkCommand::WarningEvent)
+  {
+  }
+  EventCounter Errors;
+  EventCounter Warnings;
+};
+
+vtkSmartPointer<vtkPolyData> Surface(double cx = 0.0, int theta = 48)
+{
+  return tt::MakeBumpySurface(0.8, theta, theta / 2, cx, 0, 0, 9.0);
+}
+
+TEST(MultiresolutionMapperBackground, OffByDefault)
+{
+  auto surface = Surface();
+  vtkNew<vtkMultiresolutionPolyDataMapper> mapper;
+  EXPECT_FALSE(mapper->GetBackgroundBuilds());
+  mapper->SetInputData(surface);
+  Log log(mapper);
+  Scene scene(mapper);
+  scene.Render();
+  EXPECT_FALSE(mapper->GetObjectIsTOM(0));
+  EXPECT_EQ(mapper->GetNumberOfPendingHierarchies(), 0);
+  EXPECT_EQ(log.Warnings.Count, 1); // not a TOM: drawn in full, as before
+  mapper->WaitForHierarchies();       // nothing to wait for
+  EXPECT_FALSE(mapper->GetObjectIsTOM(0));
+}
+
+TEST(MultiresolutionMapperBackground, DrawsWhileBuildingThenSwapsTheHierarchyIn)
+{
+  auto surface = Surface();
+  vtkNew<vtkMultiresolutionPolyDataMapper> mapper;
+  mapper->SetInputData(surface);
+  mapper->BackgroundBuildsOn();
+  Gate gate(mapper);
+  Log log(mapper);
+  Scene scene(mapper);
+
+  // Frames while the build is held: the leaf in full, as a fixed-cost object.
+  scene.Render();
+  gate.WaitForArrivals(1);
+  ASSERT_EQ(mapper->GetNumberOfObjects(), 1);
+  EXPECT_FALSE(mapper->GetObjectIsTOM(0));
+  EXPECT_EQ(mapper->GetNumberOfPendingHierarchies(), 1);
+  const vtkIdType full = mapper->GetObjectNumberOfTriangles(0);
+  EXPECT_EQ(full, surface->GetNumberOfPolys());
+  EXPECT_EQ(mapper->GetRenderedTriangles(), full);
+  const int pixels = scene.CountForeground();
+  EXPECT_GT(pixels, 1000);
+  mapper->SetObjectResolution(0, 0.2); // no hierarchy yet: still in full
+  scene.Render();
+  EXPECT_EQ(mapper->GetRenderedTriangles(), full);
+  EXPECT_EQ(mapper->GetNumberOfSwappedHierarchies(), 0);
+
+  // Once done, the next render swaps the hierarchy in, without a pipeline update.
+  gate.Release();
+  mapper->GetBuildQueue()->WaitAll();
+  const vtkIdType vertexBuilds = mapper->GetVertexBufferBuildCount();
+  scene.Render();
+  EXPECT_TRUE(mapper->GetObjectIsTOM(0));
+  EXPECT_EQ(mapper->GetNumberOfPendingHierarchies(), 0);
+  EXPECT_EQ(mapper->GetNumberOfSwappedHierarchies(), 1);
+  EXPECT_EQ(mapper->GetObjectNumberOfTriangles(0), full);
+  EXPECT_LT(mapper->GetObjectCoarsestResolution(0), 0.2);
+  EXPECT_GT(mapper->GetVertexBufferBuildCount(), vertexBuilds); // reordered vertices uploaded
+  EXPECT_LT(mapper->GetRenderedTriangles(), full / 4 + 8);
+  EXPECT_GT(mapper->GetRenderedTriangles(), full / 8);
+  mapper->SetObjectResolution(0, 1.0);
+  scene.Render();
+  EXPECT_EQ(mapper->GetRenderedTriangles(), full);
+  EXPECT_NEAR(scene.CountForeground(), pixels, 0.01 * pixels); // the same surface
+  EXPECT_TRUE(log.Warnings.Count == 0);
+  EXPECT_TRUE(log.Errors.Count == 0);
+  EXPECT_EQ(mapper->GetBuildQueue()->GetNumberOfBuilds(), 1);
+}
+
+TEST(MultiresolutionMapperBackground, NewInputCancelsTheStaleBuild)
+{
+  vtkNew<vtkMultiBlockDataSet> blocks;
+  blocks->SetNumberOfBlocks(2);
+  blocks->SetBlock(0, Surface(-1.0));
+  blocks->SetBlock(1, Surface(1.0, 40));
+  vtkNew<vtkMultiresolutionPolyDataMapper> mapper;
+  mapper->SetInputDataObject(blocks);
+  mapper->BackgroundBuildsOn();
+  vtkHierarchyBuildQueue* queue = mapper->GetBuildQueue();
+  queue->SetNumberOfThreads(1);
+  Gate gate(mapper);
+  Scene scene(mapper);
+  scene.SetCamera(0, 0, 5);
+  scene.Render();
+  gate.WaitForArrivals(1); // block 0 builds (held), block 1 waits
+  EXPECT_EQ(mapper->GetNumberOfPendingHierarchies(), 2);
+
+  // A new time step replaces block 1: its build is cancelled before it ran.
+  auto replacement = Surface(1.0, 44);
+  blocks->SetBlock(1, replacement);
+  scene.Render();
+  EXPECT_EQ(queue->GetNumberOfCancelledBuilds(), 1);
+  EXPECT_EQ(mapper->GetNumberOfPendingHierarchies(), 2);
+  gate.Release();
+  mapper->WaitForHierarchies();
+  EXPECT_EQ(mapper->GetNumberOfPendingHierarchies(), 0);
+  ASSERT_EQ(mapper->GetNumberOfObjects(), 2);
+  EXPECT_TRUE(mapper->GetObjectIsTOM(0));
+  EXPECT_TRUE(mapper->GetObjectIsTOM(1));
+  EXPECT_EQ(mapper->GetObjectNumberOfTriangles(1), replacement->GetNumberOfPolys());
+  EXPECT_EQ(queue->GetNumberOfBuilds(), 2);
+
+  // Another new input whose leaves are both gone while their builds run.
+  Gate second(mapper);
+  vtkNew<vtkMultiBlockDataSet> next;
+  next->SetNumberOfBlocks(1);
+  next->SetBlock(0, Surface(0.0, 36));
+  mapper->SetInputDataObject(next);
+  scene.Render();
+  second.WaitForArrivals(1);
+  // Back to the first input: the running build of the second is cancelled;
+  // the first one's leaves are built again (the mapper keeps the builds of
+  // its current leaves only; a shared cache would find them).
+  mapper->SetInputDataObject(blocks);
+  scene.Render();
+  EXPECT_EQ(queue->GetNumberOfCancelledBuilds(), 2);
+  second.Release();
+  mapper->WaitForHierarchies();
+  EXPECT_EQ(queue->GetNumberOfFinished(), 0);
+  EXPECT_EQ(queue->GetNumberOfBuilds(), 4);
+  EXPECT_TRUE(mapper->GetObjectIsTOM(0));
+  EXPECT_TRUE(mapper->GetObjectIsTOM(1));
+}
+
+TEST(MultiresolutionMapperBackground, EqualLeavesAreBuiltOnce)
+{
+  auto surface = Surface();
+  auto copy = vtkSmartPointer<vtkPolyData>::New();
+  copy->DeepCopy(surface);
+  vtkNew<vtkMultiBlockDataSet> blocks;
+  blocks->SetNumberOfBlocks(2);
+  blocks->SetBlock(0, surface);
+  blocks->SetBlock(1, copy);
+  vtkNew<vtkMultiresolutionPolyDataMapper> mapper;
+  mapper->SetInputDataObject(blocks);
+  mapper->BackgroundBuildsOn();
+  mapper->WaitForHierarchies();
+  EXPECT_TRUE(mapper->GetObjectIsTOM(0));
+  EXPECT_TRUE(mapper->GetObjectIsTOM(1));
+  EXPECT_EQ(mapper->GetBuildQueue()->GetNumberOfBuilds(), 1);
+}
+
+TEST(MultiresolutionMapperBackground, RendererWaitsForItsMappers)
+{
+  vtkNew<vtkMultiresolutionPolyDataMapper> first;
+  first->SetInputData(Surface(-1.0));
+  first->BackgroundBuildsOn();
+  vtkNew<vtkMultiresolutionPolyDataMapper> second;
+  second->SetInputData(Surface(1.0));
+  second->BackgroundBuildsOn();
+  second->SetBackgroundHierarchy(vtkHierarchyBuildQueue::MERGE_TREE);
+  vtkNew<vtkTimeCriticalRenderer> renderer;
+  vtkNew<vtkActor> a, b;
+  a->SetMapper(first);
+  b->SetMapper(second);
+  renderer->AddActor(a);
+  renderer->AddActor(b);
+  first->UpdateObjects();
+  second->UpdateObjects();
+  EXPECT_EQ(renderer->GetNumberOfPendingHierarchies(), 2);
+  renderer->WaitForHierarchies();
+  EXPECT_EQ(renderer->GetNumberOfPendingHierarchies(), 0);
+  EXPECT_TRUE(first->GetObjectIsTOM(0));
+  EXPECT_FALSE(first->GetObjectIsViewDependent(0));
+  EXPECT_TRUE(second->GetObjectIsTOM(0));
+  EXPECT_TRUE(second->GetObjectIsViewDependent(0)); // a merge tree
+}
+
+TEST(MultiresolutionMapperBackground, FailedBuildStaysInFullWithOneError)
+{
+  // Drawable, but beyond what a hierarchy stores: the builder refuses it.
+  auto surface = Surface();
+  double p[3];
+  surface->GetPoints()->GetPoint(3, p);
+  p[0] = 1e30;
+  surface->GetPoints()->SetPoint(3, p);
+  vtkNew<vtkMultiresolutionPolyDataMapper> mapper;
+  mapper->SetInputData(surface);
+  mapper->BackgroundBuildsOn();
+  Log log(mapper);
+  Scene scene(mapper);
+  scene.Render();
+  mapper->WaitForHierarchies();
+  scene.Render();
+  scene.Render();
+  EXPECT_FALSE(mapper->GetObjectIsTOM(0));
+  EXPECT_EQ(mapper->GetRenderedTriangles(), surface->GetNumberOfPolys());
+  EXPECT_EQ(mapper->GetNumberOfPendingHierarchies(), 0);
+  EXPECT_EQ(log.Errors.Count, 1);
+  EXPECT_NE(log.Errors.Last.find("no hierarchy built"), std::string::npos) << log.Errors.Last;
+  EXPECT_TRUE(log.Warnings.Count == 0);
+  EXPECT_EQ(mapper->GetBuildQueue()->GetNumberOfBuilds(), 1); // not resubmitted
+}
+
+TEST(MultiresolutionMapperBackground, NothingAllocatedPerFrameWhileBuildsRun)
+{
+  auto surface = Surface();
+  vtkNew<vtkMultiresolutionPolyDataMapper> plain;
+  plain->SetInputData(surface);
+  std::size_t plainFrame = 0;
+  {
+    Scene scene(plain);
+    scene.Render();
+    scene.Render();
+    const std::size_t before = tt::GetAllocationCount();
+    scene.Render();
+    plainFrame = tt::GetAllocationCount() - before;
+  }
+  vtkNew<vtkMultiresolutionPolyDataMapper> mapper;
+  mapper->SetInputData(surface);
+  mapper->BackgroundBuildsOn();
+  Gate gate(mapper);
+  Scene scene(mapper);
+  scene.Render();
+  gate.WaitForArrivals(1);
+  scene.Render();
+  const std::size_t before = tt::GetAllocationCount();
+  scene.Render();
+  EXPECT_LE(tt::GetAllocationCount() - before, plainFrame);
+  gate.Release();
+}
+
+TEST(MultiresolutionMapperBackground, SwitchingOffKeepsWhatIsDrawnUntilTheInputChanges)
+{
+  auto surface = Surface();
+  vtkNew<vtkMultiresolutionPolyDataMapper> mapper;
+  mapper->SetInputData(surface);
+  Log log(mapper);
+  Scene scene(mapper);
+  scene.Render();
+  EXPECT_EQ(log.Warnings.Count, 1); // not a TOM, drawn in full (background off)
+  mapper->BackgroundBuildsOn();     // the current leaf is read again and submitted
+  mapper->WaitForHierarchies();
+  EXPECT_TRUE(mapper->GetObjectIsTOM(0));
+  mapper->BackgroundBuildsOff();
+  scene.Render();
+  EXPECT_TRUE(mapper->GetObjectIsTOM(0)); // kept: no re-read for the setting alone
+  EXPECT_EQ(mapper->GetNumberOfPendingHierarchies(), 0);
+  auto copy = vtkSmartPointer<vtkPolyData>::New();
+  copy->DeepCopy(surface);
+  mapper->SetInputData(copy);
+  scene.Render();
+  EXPECT_FALSE(mapper->GetObjectIsTOM(0)); // a new input, drawn as it is
+  EXPECT_EQ(mapper->GetNumberOfPendingHierarchies(), 0);
+  EXPECT_EQ(mapper->GetBuildQueue()->GetNumberOfPending(), 0);
+  EXPECT_EQ(log.Errors.Count, 0);
+}
+
+TEST(MultiresolutionMapperBackground, LargeLeavesAreDrawnFromAStandInWhileBuilding)
+{
+  auto surface = Surface(0.0, 240); // about 57K triangles: large enough for a stand-in
+  const vtkIdType full = surface->GetNumberOfPolys();
+  vtkNew<vtkMultiresolutionPolyDataMapper> mapper;
+  mapper->SetInputData(surface);
+  mapper->BackgroundBuildsOn();
+  EXPECT_EQ(mapper->GetBackgroundInterimDivisions(), 64);
+  Gate gate(mapper);
+  Log log(mapper);
+  Scene scene(mapper);
+  scene.Render();
+  gate.WaitForArrivals(1);
+  // The stand-in: far fewer triangles on the leaf's own points, the same silhouette.
+  EXPECT_FALSE(mapper->GetObjectIsTOM(0));
+  EXPECT_EQ(mapper->GetObjectNumberOfVertices(0), surface->GetNumberOfPoints());
+  EXPECT_LT(mapper->GetRenderedTriangles(), full / 4);
+  EXPECT_GT(mapper->GetRenderedTriangles(), full / 50);
+  const int interimPixels = scene.CountForeground();
+  gate.Release();
+  mapper->WaitForHierarchies();
+  scene.Render();
+  EXPECT_TRUE(mapper->GetObjectIsTOM(0));
+  EXPECT_EQ(mapper->GetRenderedTriangles(), full);
+  EXPECT_NEAR(interimPixels, scene.CountForeground(), 0.03 * interimPixels);
+  EXPECT_EQ(log.Warnings.Count, 0);
+  EXPECT_EQ(log.Errors.Count, 0);
+
+  // Off (0): a pending leaf is drawn in full.
+  vtkNew<vtkMultiresolutionPolyDataMapper> plain;
+  plain->SetInputData(surface);
+  plain->BackgroundBuildsOn();
+  plain->SetBackgroundInterimDivisions(0);
+  Gate held(plain);
+  Scene other(plain);
+  other.Render();
+  EXPECT_EQ(plain->GetRenderedTriangles(), full);
+}
+
+TEST(MultiresolutionMapperBackground, BadSettingIsAnError)
+{
+  vtkNew<vtkMultiresolutionPolyDataMapper> mapper;
+  Log log(mapper);
+  mapper->SetBackgroundHierarchy(5);
+  EXPECT_EQ(mapper->GetBackgroundHierarchy(), 0);
+  EXPECT_EQ(log.Errors.Count, 1);
+}
+}
