@@ -22,6 +22,7 @@ namespace
 struct Job
 {
   uint64_t Key = 0;
+  vtkIdType Cells = 0; // the input leaf's
   int Hierarchy = 0;
   vtkSmartPointer<vtkPolyData> Leaf;
   std::shared_ptr<std::atomic<bool>> Cancelled;
@@ -207,7 +208,8 @@ bool vtkHierarchyBuildQueue::Submit(uint64_t key, vtkPolyData* leaf, int hierarc
     }
     lookup = in.Lookup;
   }
-  vtkSmartPointer<vtkPolyData> stored = lookup ? lookup(key, hierarchy) : nullptr;
+  const vtkIdType cells = leaf->GetNumberOfCells();
+  vtkSmartPointer<vtkPolyData> stored = lookup ? lookup(key, cells, hierarchy) : nullptr;
   vtkSmartPointer<vtkPolyData> copy = stored ? nullptr : CopyForWorker(leaf);
   std::lock_guard<std::mutex> lock(in.Mutex);
   if (in.Known(key))
@@ -228,6 +230,7 @@ bool vtkHierarchyBuildQueue::Submit(uint64_t key, vtkPolyData* leaf, int hierarc
   }
   Job job;
   job.Key = key;
+  job.Cells = cells;
   job.Hierarchy = hierarchy;
   job.Leaf = copy;
   job.Cancelled = std::make_shared<std::atomic<bool>>(false);
@@ -257,6 +260,7 @@ void vtkHierarchyBuildQueue::WorkerLoop()
 
     const auto start = std::chrono::steady_clock::now();
     const uint64_t key = job.Key;
+    const vtkIdType cells = job.Cells;
     std::atomic<bool>& cancelled = *job.Cancelled;
     auto progress = [&hook, &cancelled, key](double value)
     {
@@ -293,7 +297,12 @@ void vtkHierarchyBuildQueue::WorkerLoop()
     lock.unlock();
     if (!stopped && store && result.Output)
     {
-      store(key, result.Hierarchy, result.Output);
+      std::vector<std::string> warnings;
+      store(key, cells, result.Hierarchy, result.Output, warnings);
+      for (auto& warning : warnings)
+      {
+        result.Messages.push_back({ false, std::move(warning) });
+      }
     }
     lock.lock();
     in.Running.erase(key);

@@ -150,8 +150,12 @@ public:
    * from the submitting thread (Lookup) and the worker threads (Store).
    * Install before the first Submit(); null functions: no store.
    */
-  using LookupFunction = std::function<vtkSmartPointer<vtkPolyData>(uint64_t key, int hierarchy)>;
-  using StoreFunction = std::function<void(uint64_t key, int hierarchy, vtkPolyData* output)>;
+  /// `cells`: the input leaf's cell count; the store's warnings (a file that
+  /// could not be written) become warnings of the build's result.
+  using LookupFunction =
+    std::function<vtkSmartPointer<vtkPolyData>(uint64_t key, vtkIdType cells, int hierarchy)>;
+  using StoreFunction = std::function<void(uint64_t key, vtkIdType cells, int hierarchy,
+    vtkPolyData* output, std::vector<std::string>& warnings)>;
   void SetResultStore(LookupFunction lookup, StoreFunction store);
 
   /**

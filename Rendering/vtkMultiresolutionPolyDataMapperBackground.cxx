@@ -7,6 +7,7 @@
 
 #include "LeafContentHash.h"
 #include "LeafInterimReduction.h"
+#include "vtkHierarchyBuildCache.h"
 #include "vtkMergeTreeFieldData.h"
 #include "vtkPolyData.h"
 #include "vtkPolyDataValidator.h"
@@ -90,6 +91,17 @@ vtkHierarchyBuildQueue* vtkMultiresolutionPolyDataMapper::GetBuildQueue()
   if (!in.Queue)
   {
     in.Queue = vtkSmartPointer<vtkHierarchyBuildQueue>::New();
+    // The process's hierarchy cache (shared with vtkMultiresolutionHierarchyBuilder
+    // and every other mapper): a time step or an edit shown again builds nothing.
+    vtkHierarchyBuildCache* cache = vtkHierarchyBuildCache::GetSharedInstance();
+    in.Queue->SetResultStore(
+      [cache](uint64_t key, vtkIdType cells, int hierarchy) {
+        return cache->Find(vtkHierarchyBuildCache::Key{ key, cells, hierarchy });
+      },
+      [cache](uint64_t key, vtkIdType cells, int hierarchy, vtkPolyData* output,
+        std::vector<std::string>& warnings) {
+        cache->Insert(vtkHierarchyBuildCache::Key{ key, cells, hierarchy }, output, &warnings);
+      });
   }
   return in.Queue;
 }

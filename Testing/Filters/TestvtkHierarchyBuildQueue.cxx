@@ -233,12 +233,12 @@ TEST(HierarchyBuildQueue, StoreIsLookedUpBeforeABuildAndFilledAfter)
   auto sphere = tt::MakeSphere(14);
   std::mutex mutex;
   std::map<uint64_t, vtkSmartPointer<vtkPolyData>> store;
-  auto lookup = [&](uint64_t key, int) -> vtkSmartPointer<vtkPolyData> {
+  auto lookup = [&](uint64_t key, vtkIdType, int) -> vtkSmartPointer<vtkPolyData> {
     std::lock_guard<std::mutex> lock(mutex);
     auto found = store.find(key);
     return found == store.end() ? nullptr : found->second;
   };
-  auto keep = [&](uint64_t key, int, vtkPolyData* output) {
+  auto keep = [&](uint64_t key, vtkIdType, int, vtkPolyData* output, std::vector<std::string>&) {
     std::lock_guard<std::mutex> lock(mutex);
     store[key] = output;
   };

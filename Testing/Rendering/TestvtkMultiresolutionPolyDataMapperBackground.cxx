@@ -5,7 +5,9 @@
 // cancelled by a new input, waiting (mapper and renderer), a failed build,
 // merge trees, no allocation per frame while builds run, off by default.
 #include "MultiresolutionMapperTestSupport.h"
+#include "vtkHierarchyBuildCache.h"
 #include "vtkHierarchyBuildQueue.h"
+#include "vtkHierarchyBuildCache.h"
 #include "vtkTimeCriticalRenderer.h"
 
 #include <condition_variable>
@@ -75,7 +77,15 @@ vtkSmartPointer<vtkPolyData> Surface(double cx = 0.0, int theta = 48)
   return tt::MakeBumpySurface(0.8, theta, theta / 2, cx, 0, 0, 9.0);
 }
 
-TEST(MultiresolutionMapperBackground, OffByDefault)
+/// Every test starts with an empty process cache: the mappers' builds share
+/// it, and a hit would finish a build that a test holds on purpose.
+class MultiresolutionMapperBackground : public ::testing::Test
+{
+protected:
+  void SetUp() override { vtkHierarchyBuildCache::GetSharedInstance()->Clear(); }
+};
+
+TEST_F(MultiresolutionMapperBackground, OffByDefault)
 {
   auto surface = Surface();
   vtkNew<vtkMultiresolutionPolyDataMapper> mapper;
@@ -91,7 +101,7 @@ TEST(MultiresolutionMapperBackground, OffByDefault)
   EXPECT_FALSE(mapper->GetObjectIsTOM(0));
 }
 
-TEST(MultiresolutionMapperBackground, DrawsWhileBuildingThenSwapsTheHierarchyIn)
+TEST_F(MultiresolutionMapperBackground, DrawsWhileBuildingThenSwapsTheHierarchyIn)
 {
   auto surface = Surface();
   vtkNew<vtkMultiresolutionPolyDataMapper> mapper;
@@ -139,7 +149,7 @@ TEST(MultiresolutionMapperBackground, DrawsWhileBuildingThenSwapsTheHierarchyIn)
   EXPECT_EQ(mapper->GetBuildQueue()->GetNumberOfBuilds(), 1);
 }
 
-TEST(MultiresolutionMapperBackground, NewInputCancelsTheStaleBuild)
+TEST_F(MultiresolutionMapperBackground, NewInputCancelsTheStaleBuild)
 {
   vtkNew<vtkMultiBlockDataSet> blocks;
   blocks->SetNumberOfBlocks(2);
@@ -181,20 +191,48 @@ TEST(MultiresolutionMapperBackground, NewInputCancelsTheStaleBuild)
   scene.Render();
   second.WaitForArrivals(1);
   // Back to the first input: the running build of the second is cancelled;
-  // the first one's leaves are built again (the mapper keeps the builds of
-  // its current leaves only; a shared cache would find them).
+  // the first one's leaves come from the process's cache, unbuilt.
   mapper->SetInputDataObject(blocks);
   scene.Render();
   EXPECT_EQ(queue->GetNumberOfCancelledBuilds(), 2);
   second.Release();
   mapper->WaitForHierarchies();
   EXPECT_EQ(queue->GetNumberOfFinished(), 0);
-  EXPECT_EQ(queue->GetNumberOfBuilds(), 4);
+  EXPECT_EQ(queue->GetNumberOfBuilds(), 2);
+  EXPECT_EQ(queue->GetNumberOfStoreHits(), 2);
   EXPECT_TRUE(mapper->GetObjectIsTOM(0));
   EXPECT_TRUE(mapper->GetObjectIsTOM(1));
 }
 
-TEST(MultiresolutionMapperBackground, EqualLeavesAreBuiltOnce)
+TEST_F(MultiresolutionMapperBackground, ContentShownAgainComesFromTheSharedCache)
+{
+  // A time step or an edit shown again (a new leaf object, the same content)
+  // is not built again: the first mapper's build went to the process's cache.
+  auto surface = Surface();
+  vtkNew<vtkMultiresolutionPolyDataMapper> first;
+  first->SetInputData(surface);
+  first->BackgroundBuildsOn();
+  Scene scene(first);
+  scene.Render();
+  first->WaitForHierarchies();
+  scene.Render();
+  ASSERT_TRUE(first->GetObjectIsTOM(0));
+  EXPECT_EQ(first->GetBuildQueue()->GetNumberOfBuilds(), 1);
+
+  auto again = vtkSmartPointer<vtkPolyData>::New();
+  again->DeepCopy(surface);
+  vtkNew<vtkMultiresolutionPolyDataMapper> second;
+  second->SetInputData(again);
+  second->BackgroundBuildsOn();
+  Scene other(second);
+  other.Render();
+  other.Render();
+  EXPECT_TRUE(second->GetObjectIsTOM(0));
+  EXPECT_EQ(second->GetBuildQueue()->GetNumberOfBuilds(), 0);
+  EXPECT_EQ(second->GetBuildQueue()->GetNumberOfStoreHits(), 1);
+}
+
+TEST_F(MultiresolutionMapperBackground, EqualLeavesAreBuiltOnce)
 {
   auto surface = Surface();
   auto copy = vtkSmartPointer<vtkPolyData>::New();
@@ -212,7 +250,7 @@ TEST(MultiresolutionMapperBackground, EqualLeavesAreBuiltOnce)
   EXPECT_EQ(mapper->GetBuildQueue()->GetNumberOfBuilds(), 1);
 }
 
-TEST(MultiresolutionMapperBackground, RendererWaitsForItsMappers)
+TEST_F(MultiresolutionMapperBackground, RendererWaitsForItsMappers)
 {
   vtkNew<vtkMultiresolutionPolyDataMapper> first;
   first->SetInputData(Surface(-1.0));
@@ -238,7 +276,7 @@ TEST(MultiresolutionMapperBackground, RendererWaitsForItsMappers)
   EXPECT_TRUE(second->GetObjectIsViewDependent(0)); // a merge tree
 }
 
-TEST(MultiresolutionMapperBackground, FailedBuildStaysInFullWithOneError)
+TEST_F(MultiresolutionMapperBackground, FailedBuildStaysInFullWithOneError)
 {
   // Drawable, but beyond what a hierarchy stores: the builder refuses it.
   auto surface = Surface();
@@ -264,7 +302,7 @@ TEST(MultiresolutionMapperBackground, FailedBuildStaysInFullWithOneError)
   EXPECT_EQ(mapper->GetBuildQueue()->GetNumberOfBuilds(), 1); // not resubmitted
 }
 
-TEST(MultiresolutionMapperBackground, NothingAllocatedPerFrameWhileBuildsRun)
+TEST_F(MultiresolutionMapperBackground, NothingAllocatedPerFrameWhileBuildsRun)
 {
   auto surface = Surface();
   vtkNew<vtkMultiresolutionPolyDataMapper> plain;
@@ -292,7 +330,7 @@ TEST(MultiresolutionMapperBackground, NothingAllocatedPerFrameWhileBuildsRun)
   gate.Release();
 }
 
-TEST(MultiresolutionMapperBackground, SwitchingOffKeepsWhatIsDrawnUntilTheInputChanges)
+TEST_F(MultiresolutionMapperBackground, SwitchingOffKeepsWhatIsDrawnUntilTheInputChanges)
 {
   auto surface = Surface();
   vtkNew<vtkMultiresolutionPolyDataMapper> mapper;
@@ -318,7 +356,7 @@ TEST(MultiresolutionMapperBackground, SwitchingOffKeepsWhatIsDrawnUntilTheInputC
   EXPECT_EQ(log.Errors.Count, 0);
 }
 
-TEST(MultiresolutionMapperBackground, LargeLeavesAreDrawnFromAStandInWhileBuilding)
+TEST_F(MultiresolutionMapperBackground, LargeLeavesAreDrawnFromAStandInWhileBuilding)
 {
   auto surface = Surface(0.0, 240); // about 57K triangles: large enough for a stand-in
   const vtkIdType full = surface->GetNumberOfPolys();
@@ -357,7 +395,7 @@ TEST(MultiresolutionMapperBackground, LargeLeavesAreDrawnFromAStandInWhileBuildi
   EXPECT_EQ(plain->GetRenderedTriangles(), full);
 }
 
-TEST(MultiresolutionMapperBackground, BadSettingIsAnError)
+TEST_F(MultiresolutionMapperBackground, BadSettingIsAnError)
 {
   vtkNew<vtkMultiresolutionPolyDataMapper> mapper;
   Log log(mapper);
