@@ -4,6 +4,7 @@
 #include "CollapseEngine.h"
 
 #include <algorithm>
+#include <array>
 #include <cstring>
 #include <limits>
 
@@ -43,7 +44,7 @@ void PassSchedule::SortByKey(std::vector<Entry>& entries, std::vector<Entry>& bu
   {
     return;
   }
-  std::vector<uint32_t> counts(3 * buckets, 0);
+  std::array<uint32_t, 3 * buckets> counts{}; // on the stack: a pass does not allocate
   for (const Entry& e : entries)
   {
     ++counts[e.Key & mask];
@@ -202,19 +203,30 @@ uint32_t PassSchedule::RunPass()
   const CollapseEngine& e = this->Engine;
   const size_t n = this->List.size();
   // At least one entry, so that a pass that finds something legal applies it.
-  const size_t considered = std::max<size_t>(1, static_cast<size_t>(PassShare * double(n)));
+  // After a pass that applied nothing (all it considered blocked, re-keyed
+  // or waiting for a re-keyed target) the next one considers everything and
+  // takes legal alternatives at once, so that the passes always progress.
+  const size_t considered = this->Forced
+    ? n
+    : std::max<size_t>(1, static_cast<size_t>(PassShare * double(n)));
   uint32_t applied = 0;
   for (size_t i = 0; i < std::min(n, considered); ++i)
   {
     this->PrefetchAhead(i);
     const uint32_t u = this->List[i].Vertex;
-    if (this->IsTouched(u) || e.IsRemoved(u))
+    if (this->IsTouched(u))
     {
+      continue;
+    }
+    if (e.IsRemoved(u))
+    {
+      this->Touch(u); // an orphan the engine removed (untouched): drop its entry
       continue;
     }
     // The next untouched entry's key bounds an alternative taken at once
     // (the last entry considered has no bound).
-    const uint32_t nextKey = i + 1 < std::min(n, considered) ? this->List[i + 1].Key : NoKey;
+    const uint32_t nextKey =
+      !this->Forced && i + 1 < std::min(n, considered) ? this->List[i + 1].Key : NoKey;
     if (this->TryCollapse(u, nextKey))
     {
       ++applied;
@@ -224,6 +236,7 @@ uint32_t PassSchedule::RunPass()
       }
     }
   }
+  this->Forced = applied == 0;
   this->CollectNext();
   return applied;
 }
@@ -267,7 +280,12 @@ bool PassSchedule::Run()
   {
     this->Live[v] = v;
   }
+  // Every list holds at most one entry per vertex: reserved once, so that
+  // the passes do not allocate.
   this->List.reserve(n);
+  this->Fresh.reserve(n);
+  this->Buffer.reserve(n);
+  this->TouchedList.reserve(n);
   this->Collect();
   for (;;)
   {
@@ -281,6 +299,7 @@ bool PassSchedule::Run()
         return true;
       }
       this->Collect();
+      this->Forced = false;
       continue;
     }
     if (this->RunPass() == NoKey)

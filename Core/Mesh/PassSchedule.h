@@ -51,7 +51,7 @@ public:
   uint32_t GetPassCount() const { return this->Passes; }
 
   /// Share of a pass's sorted list it considers before the next pass starts.
-  static constexpr double PassShare = 0.5;
+  static constexpr double PassShare = 0.25;
 
   /// A candidate collapse: the source's key as order-preserving bits.
   struct Entry
@@ -93,6 +93,7 @@ private:
   std::vector<Entry> Fresh;        // the touched vertices' new entries
   std::vector<Entry> Buffer;       // radix sort and merge
   uint8_t Stamp = 0;
+  bool Forced = false;             // the last pass applied nothing (see RunPass)
   uint32_t Passes = 0;            // passes started (0 = none)
   size_t ReportEvery = 1;
   size_t NextReport = 1;
