@@ -35,9 +35,12 @@ class CollapseEngine;
  * cheap, which keeps the order close to the greedy one. When a vertex's
  * cheapest target is illegal its cheapest legal one is taken when it is
  * still the cheapest of the pass and its target is untouched; otherwise it
- * waits for the next pass (or is blocked when nothing is legal). Once no
- * vertex has a candidate the engine relaxes its constraints; the run ends
- * when none is left. Deterministic: one thread, ties broken by vertex id.
+ * waits for the next pass (or is blocked when nothing is legal); a pass
+ * after one that applied nothing considers its whole list and takes legal
+ * alternatives at once. Once no vertex has a candidate the engine relaxes its
+ * constraints; the run ends when none is left. Deterministic: one thread,
+ * equal keys in vertex order in the first list, then in the order of the
+ * touches.
  */
 class PassSchedule
 {
