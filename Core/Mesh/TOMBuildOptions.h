@@ -28,9 +28,26 @@ namespace timecritical
  */
 constexpr double MaximumCoordinateMagnitude = 1e28;
 
+/// The collapse schedules TOMBuilder can run (TOMBuildOptions::Engine).
+enum class TOMBuildEngine
+{
+  /// The cheapest legal collapse of the whole mesh each time (an indexed heap
+  /// whose keys are kept exact after every collapse).
+  Greedy,
+  /**
+   * Passes (PassSchedule.h): the candidates are sorted once per pass and
+   * taken cheapest first while no two collapses of the pass share a
+   * triangle around them; the keys of the vertices around the collapses are
+   * refreshed once, at the end of the pass. Fewer key updates and no heap.
+   */
+  Passes
+};
+
 /// Settings of TOMBuilder.
 struct TOMBuildOptions
 {
+  /// The collapse schedule (same checks, constraints and output for both).
+  TOMBuildEngine Engine = TOMBuildEngine::Greedy;
   /// Keep open boundaries in place (boundary vertices slide only along the boundary).
   bool PreserveBoundaries = true;
   /// Keep sharp edges (dihedral angle above FeatureAngle) in place: by

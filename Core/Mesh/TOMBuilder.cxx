@@ -2,6 +2,7 @@
 #include "TOMBuilder.h"
 
 #include "CollapseEngine.h"
+#include "PassSchedule.h"
 
 #include <algorithm>
 #include <utility>
@@ -10,7 +11,8 @@
  * The greedy schedule over the collapse engine (CollapseEngine.h): always the
  * cheapest legal collapse of the whole mesh, from an indexed heap whose keys
  * the engine keeps exact; when the heap runs dry the engine relaxes the
- * constraints one level, until none is left.
+ * constraints one level, until none is left. TOMBuildEngine::Passes runs the
+ * pass schedule (PassSchedule.h) over the same engine instead.
  */
 
 namespace timecritical
@@ -109,6 +111,13 @@ TOMBuilder::TOMBuilder(TOMBuildOptions options)
 TOMBuildResult TOMBuilder::Build(const double* points, size_t numberOfPoints,
   const uint32_t* triangles, size_t numberOfTriangles) const
 {
+  if (this->Options.Engine == TOMBuildEngine::Passes)
+  {
+    CollapseEngine engine(this->Options, false); // the passes need no heap
+    collapse::PassSchedule schedule(engine);
+    return engine.Run(
+      points, numberOfPoints, triangles, numberOfTriangles, [&schedule] { return schedule.Run(); });
+  }
   CollapseEngine engine(this->Options, true);
   GreedySchedule schedule(engine);
   return engine.Run(

@@ -121,7 +121,14 @@ struct Settings
   bool QualityOnly = false;
   /// Only the meshes of these names (all when empty).
   std::vector<std::string> MeshNames;
+  /// The engine of the TOM builds (--engine greedy|passes).
+  timecritical::TOMBuildEngine Engine = timecritical::TOMBuildEngine::Greedy;
+  /// Only the build times of both engines and meshopt's 10% level (--build-only).
+  bool BuildOnly = false;
 };
+
+/// The engine BuildTOM uses (set from Settings::Engine).
+timecritical::TOMBuildEngine CurrentEngine = timecritical::TOMBuildEngine::Greedy;
 
 const std::vector<double> TraversalResolutions = { 1.0, 0.5, 0.25, 0.1, 0.05 };
 const std::vector<double> HausdorffResolutions = { 0.5, 0.25, 0.1, 0.05 };
@@ -588,7 +595,9 @@ std::vector<MeshSource> ChooseMeshes(const Settings& settings)
 
 TOMBuildResult BuildTOM(const TriangleMesh& mesh)
 {
-  return TOMBuilder().Build(mesh.Points.data(), mesh.NumberOfPoints(), mesh.Triangles.data(),
+  timecritical::TOMBuildOptions options;
+  options.Engine = CurrentEngine;
+  return TOMBuilder(options).Build(mesh.Points.data(), mesh.NumberOfPoints(), mesh.Triangles.data(),
     mesh.NumberOfTriangles());
 }
 
@@ -1180,6 +1189,39 @@ std::vector<QualityFigures> MeasureQuality(const InputMesh& input, const TOMBuil
   return all;
 }
 
+/**
+ * --build-only: both engines and meshopt's 10% level, interleaved run by run
+ * (so that a change of load hits all three alike), medians printed.
+ */
+void CompareEngines(const Settings& settings, const InputMesh& input)
+{
+  using timecritical::TOMBuildEngine;
+  MeshoptInput meshopt = MakeMeshoptInput(input.Mesh);
+  const auto target =
+    static_cast<size_t>(ComparisonFraction * static_cast<double>(input.Mesh.NumberOfTriangles()));
+  std::vector<double> greedy, passes, reference;
+  TOMBuildResult tom;
+  const int runs = std::max(settings.BuildRuns, 5);
+  for (int run = 0; run < runs; ++run)
+  {
+    CurrentEngine = TOMBuildEngine::Greedy;
+    greedy.push_back(SecondsOf([&]() { tom = BuildTOM(input.Mesh); }));
+    ValidateTOM(input, tom);
+    CurrentEngine = TOMBuildEngine::Passes;
+    passes.push_back(SecondsOf([&]() { tom = BuildTOM(input.Mesh); }));
+    ValidateTOM(input, tom);
+    reference.push_back(SecondsOf([&]() { MeshoptSimplify(meshopt, target); }));
+  }
+  CurrentEngine = settings.Engine;
+  const double tris = static_cast<double>(input.Mesh.NumberOfTriangles()) * 1e-6;
+  const double g = Median(greedy), p = Median(passes), m = Median(reference);
+  std::cout << "[" << input.Name << "] medians of " << runs << " (load " << LoadAverageText()
+            << "): greedy " << Fixed(g, 3) << " s (" << Fixed(tris / g, 2) << " Mtri/s, "
+            << Fixed(m / g, 2) << "x meshopt), passes " << Fixed(p, 3) << " s ("
+            << Fixed(tris / p, 2) << " Mtri/s, " << Fixed(m / p, 2) << "x meshopt), meshopt 10% "
+            << Fixed(m, 3) << " s; passes/greedy speed " << Fixed(g / p, 2) << std::endl;
+}
+
 MeshReport MeasureMesh(const Settings& settings, const MeshSource& source)
 {
   MeshReport report;
@@ -1196,6 +1238,13 @@ MeshReport MeasureMesh(const Settings& settings, const MeshSource& source)
             << " triangles (loaded in " << Fixed(report.LoadSeconds, 2) << " s)" << std::endl;
 
   TOMBuildResult tom;
+  if (settings.BuildOnly)
+  {
+    CompareEngines(settings, input);
+    report.QualityOnly = true;
+    report.QualitySkipped = "--build-only";
+    return report;
+  }
   if (settings.QualityOnly && report.Triangles > settings.HausdorffMaxTriangles)
   {
     report.QualitySkipped = "more than " + Count(settings.HausdorffMaxTriangles) + " triangles";
@@ -1714,14 +1763,17 @@ JsonValue SettingsInfo(const Settings& s)
 void PrintUsage(std::ostream& os)
 {
   os << "usage: TOMBenchmark [--quick] [--quality-only] [--mesh NAME]... [--json FILE] [--data DIR]\n"
-        "                    [--hausdorff-all]\n"
+        "                    [--hausdorff-all] [--engine greedy|passes] [--build-only]\n"
         "  --quick          small meshes only, shorter measurements (smoke test)\n"
         "  --quality-only   section 4 only (quality against the peers)\n"
         "  --mesh NAME      only this mesh (repeatable): cow, spot, ..., igea-loop1, blobby\n"
         "  --json FILE      where to write the figures (default tom-benchmark.json)\n"
         "  --data DIR       folder of the shared meshes\n"
         "                   (default " TIMECRITICAL_SHARED_DATA_DIR ")\n"
-        "  --hausdorff-all  Hausdorff distances also for meshes over 500k triangles (minutes)\n";
+        "  --hausdorff-all  Hausdorff distances also for meshes over 500k triangles (minutes)\n"
+        "  --engine NAME    the TOM builds' engine (TOMBuildOptions::Engine): greedy (default)\n"
+        "                   or passes\n"
+        "  --build-only     only the build times of both engines and meshopt's 10% level\n";
 }
 
 enum class Parsed
@@ -1743,6 +1795,9 @@ Parsed ParseArguments(int argc, char* argv[], Settings& settings)
   arguments.AddText("--json", settings.JsonPath);
   arguments.AddText("--data", settings.DataDirectory);
   arguments.AddFlag("--hausdorff-all", hausdorffAll);
+  arguments.AddFlag("--build-only", settings.BuildOnly);
+  std::string engine = "greedy";
+  arguments.AddText("--engine", engine);
   try
   {
     arguments.Parse();
@@ -1758,6 +1813,16 @@ Parsed ParseArguments(int argc, char* argv[], Settings& settings)
     PrintUsage(std::cout);
     return Parsed::Help;
   }
+  if (engine != "greedy" && engine != "passes")
+  {
+    std::cerr << "--engine must be greedy or passes\n";
+    PrintUsage(std::cerr);
+    return Parsed::Error;
+  }
+  settings.Engine = engine == "passes" ? timecritical::TOMBuildEngine::Passes
+                                       : timecritical::TOMBuildEngine::Greedy;
+  CurrentEngine = settings.Engine;
+  settings.QualityOnly = settings.QualityOnly || settings.BuildOnly;
   if (settings.Quick)
   {
     settings.MinMeasureSeconds = 0.02;

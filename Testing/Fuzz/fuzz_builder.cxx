@@ -74,6 +74,8 @@ TOMBuildOptions CollapseOptions(const MeshInput& mesh, int* progressCalls, int a
   options.MaximumNormalDeviation = mesh.Options[1] * (180.0 / 255.0);
   options.MinimumTriangleQuality = (mesh.Flags & SliverRejection) ? mesh.Options[2] / 255.0 : 0.0;
   options.ErrorCurveSamples = TailByte(mesh, 0);
+  // Tail byte 5, bit 0: the pass engine instead of the greedy one (TOMBuilder only).
+  options.Engine = (TailByte(mesh, 5) & 1) ? TOMBuildEngine::Passes : TOMBuildEngine::Greedy;
   if (abortAfter > 0)
   {
     options.Progress = [progressCalls, abortAfter](double fraction) {

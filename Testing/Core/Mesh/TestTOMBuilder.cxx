@@ -57,8 +57,17 @@ double Dot(const V3& a, const V3& b)
   return a.X * b.X + a.Y * b.Y + a.Z * b.Z;
 }
 
-TOMBuildResult Build(const TriangleMesh& mesh, const TOMBuildOptions& options = {})
+// The engine under test: the greedy one, or the pass schedule where the file
+// is built a second time as TestTOMBuilderPasses (Testing/Core/Mesh/CMakeLists.txt).
+#ifdef TIMECRITICAL_TEST_PASS_ENGINE
+constexpr TOMBuildEngine EngineUnderTest = TOMBuildEngine::Passes;
+#else
+constexpr TOMBuildEngine EngineUnderTest = TOMBuildEngine::Greedy;
+#endif
+
+TOMBuildResult Build(const TriangleMesh& mesh, TOMBuildOptions options = {})
 {
+  options.Engine = EngineUnderTest;
   return TOMBuilder(options).Build(mesh.Points.data(), mesh.NumberOfPoints(),
     mesh.Triangles.data(), mesh.NumberOfTriangles());
 }
@@ -1199,7 +1208,11 @@ TEST(TOMBuilderQuality, AtMostTheBestVertexSubsetPeer)
     {
       GTEST_SKIP() << "shared mesh not available: " << c.Mesh;
     }
-    EXPECT_LE(error, 1.1 * c.BestPeer)
+    // The pass engine is not yet at the greedy order's pins (fandisk at 5%
+    // 1.22 times the best peer, teapot at 10% 1.15; docs/benchmarks/tom.md):
+    // its own, looser bound keeps it from getting worse.
+    const double bound = EngineUnderTest == TOMBuildEngine::Passes ? 1.3 : 1.1;
+    EXPECT_LE(error, bound * c.BestPeer)
       << c.Mesh << " at " << c.Fraction << ": best peer " << c.Peer << " " << c.BestPeer;
   }
 }
