@@ -91,9 +91,10 @@ def check_balance(full, drawn, had_room):
         print("pieces differ in size: balance not checked")
         return
     if not had_room:
-        # A machine so loaded that the fixed cost alone fills the target
-        # leaves every rank at its coarsest levels: nothing to balance.
-        print("no frame had room for the objects: balance not checked")
+        # A machine so loaded that the fixed cost alone (nearly) fills a
+        # rank's target leaves it at its coarsest levels: nothing to balance.
+        print("a rank's fixed part left little room in the last frames (a loaded machine): "
+              "balance not checked")
         return
     if min(medians) < 0.5 * max(medians):
         fail("ranks with alike pieces drew %s triangles: one less than half another's"
@@ -132,6 +133,7 @@ def check_against_one_rank():
     measured = [[] for _ in range(ranks)]
     drawing = [[] for _ in range(ranks)]
     drawn = [[] for _ in range(ranks)]  # triangles of the last ten frames
+    roomy = [0] * ranks  # of those, frames whose fixed part left room for the objects
     planned = [[] for _ in range(ranks)]
     for frame in range(40):
         camera.Azimuth(2.0)
@@ -156,6 +158,7 @@ def check_against_one_rank():
                     fail("rank %d drew %d triangles of %d" % (r, triangles, full[r]))
             if frame >= 30:
                 drawn[r].append(triangles)
+                roomy[r] += fixed < 0.8 * target
             if frame > 0:  # the measured time is that of the frame before
                 measured[r].append(server.GetRankMeasuredFrameTime(r))
                 drawing[r].append(server.GetRankDrawingTime(r))
@@ -168,7 +171,7 @@ def check_against_one_rank():
               % (r, len(planned[r]), 40 - WARM_UP, WARM_UP, sum(planned[r])))
         if not all(planned[r]):
             fail("rank %d: a plan with room for the objects exceeded the target" % r)
-    check_balance(full, drawn, any(planned))
+    check_balance(full, drawn, min(roomy) >= 8)
     summary = {"ranks": ranks, "target_ms": target_ms, "per_rank": [],
                "compositing_ms": 1000.0 * server.GetCompositingTime()}
     for r in range(ranks):
