@@ -1,10 +1,16 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "LeafHierarchyBuild.h"
 
+#include "vtkCellArray.h"
+#include "vtkCellData.h"
 #include "vtkCommand.h"
+#include "vtkDataArray.h"
+#include "vtkFieldData.h"
 #include "vtkMergeTreeBuilder.h"
 #include "vtkNew.h"
 #include "vtkMergeTreeFieldData.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkPolyDataValidator.h"
 #include "vtkTOMBuilder.h"
@@ -65,7 +71,84 @@ std::string PassingReason(vtkPolyData* leaf, bool& isError)
   }
   return std::string();
 }
+
+vtkSmartPointer<vtkAbstractArray> ArrayOfItsOwn(vtkAbstractArray* array)
+{
+  auto copy = vtk::TakeSmartPointer(array->NewInstance());
+  auto* values = vtkDataArray::SafeDownCast(array);
+  if (values)
+  {
+    vtkDataArray::SafeDownCast(copy)->ShallowCopy(values); // the values, not the caches
+  }
+  else
+  {
+    copy->DeepCopy(array); // string and variant arrays: small, and no shallow copy
+  }
+  return copy;
+}
+
+vtkSmartPointer<vtkCellArray> CellsOfTheirOwn(vtkCellArray* cells)
+{
+  auto copy = vtkSmartPointer<vtkCellArray>::New();
+  if (cells)
+  {
+    copy->ShallowCopy(cells);
+  }
+  return copy;
+}
+
+/// Arrays of their own with the same names, values and active attributes;
+/// input whose arrays cannot be told apart by name keeps the shared arrays.
+void CopyAttributes(vtkFieldData* from, vtkFieldData* to)
+{
+  auto* fromAttributes = vtkDataSetAttributes::SafeDownCast(from);
+  auto* toAttributes = vtkDataSetAttributes::SafeDownCast(to);
+  for (int i = 0; i < from->GetNumberOfArrays(); ++i)
+  {
+    vtkAbstractArray* array = from->GetAbstractArray(i);
+    if (!array->GetName() || to->AddArray(ArrayOfItsOwn(array)) != i)
+    {
+      to->ShallowCopy(from);
+      return;
+    }
+  }
+  if (!fromAttributes || !toAttributes)
+  {
+    return;
+  }
+  for (int attribute = 0; attribute < vtkDataSetAttributes::NUM_ATTRIBUTES; ++attribute)
+  {
+    vtkAbstractArray* active = fromAttributes->GetAbstractAttribute(attribute);
+    for (int i = 0; active && i < from->GetNumberOfArrays(); ++i)
+    {
+      if (from->GetAbstractArray(i) == active)
+      {
+        toAttributes->SetActiveAttribute(i, attribute);
+      }
+    }
+  }
+}
+
 } // namespace
+
+vtkSmartPointer<vtkPolyData> CopyForAnotherThread(vtkPolyData* leaf)
+{
+  auto copy = vtkSmartPointer<vtkPolyData>::New();
+  if (vtkPoints* points = leaf->GetPoints())
+  {
+    vtkNew<vtkPoints> ownPoints;
+    ownPoints->SetData(vtkDataArray::SafeDownCast(ArrayOfItsOwn(points->GetData())));
+    copy->SetPoints(ownPoints);
+  }
+  copy->SetVerts(CellsOfTheirOwn(leaf->GetVerts()));
+  copy->SetLines(CellsOfTheirOwn(leaf->GetLines()));
+  copy->SetPolys(CellsOfTheirOwn(leaf->GetPolys()));
+  copy->SetStrips(CellsOfTheirOwn(leaf->GetStrips()));
+  CopyAttributes(leaf->GetPointData(), copy->GetPointData());
+  CopyAttributes(leaf->GetCellData(), copy->GetCellData());
+  CopyAttributes(leaf->GetFieldData(), copy->GetFieldData());
+  return copy;
+}
 
 bool CarriesHierarchy(vtkPolyData* leaf, LeafHierarchy hierarchy)
 {
@@ -77,8 +160,14 @@ LeafBuildResult BuildLeafHierarchy(
   vtkPolyData* leaf, LeafHierarchy hierarchy, const LeafBuildProgress& progress)
 {
   LeafBuildResult result;
+  if (!leaf)
+  {
+    result.Messages.push_back({ true, "No leaf to build." });
+    return result;
+  }
+  vtkSmartPointer<vtkPolyData> input = CopyForAnotherThread(leaf);
   bool isError = false;
-  const std::string reason = PassingReason(leaf, isError);
+  const std::string reason = PassingReason(input, isError);
   if (!reason.empty())
   {
     result.Messages.push_back({ isError, reason });
@@ -99,9 +188,7 @@ LeafBuildResult BuildLeafHierarchy(
   builder->AddObserver(vtkCommand::ProgressEvent, observer);
   builder->AddObserver(vtkCommand::ErrorEvent, observer);
   builder->AddObserver(vtkCommand::WarningEvent, observer);
-  auto input = vtkSmartPointer<vtkPolyData>::New();
-  input->ShallowCopy(leaf); // the builder's pipeline never touches the caller's leaf
-  builder->SetInputData(input);
+  builder->SetInputData(input); // never the caller's leaf
   builder->Update();
   vtkPolyData* built = builder->GetOutput();
   if (observer->Cancelled)

@@ -2,7 +2,8 @@
 /**
  * Builds the hierarchy of one polydata leaf (vtkTOMBuilder or
  * vtkMergeTreeBuilder with default settings), on whatever thread calls it:
- * the leaf is only read (shallow copied into the builder's own input), every
+ * the leaf is only read (through VTK objects of the build's own, sharing its
+ * values, so that builds may share a leaf's objects across threads), every
  * message of the builder is collected rather than printed, and progress and
  * cancellation go through the caller's callback. The callers
  * (vtkMultiresolutionHierarchyBuilder, and builds run on worker threads)
@@ -52,6 +53,16 @@ struct LeafBuildResult
  * false cancels the build (Cancelled is then set and Hierarchy is null).
  */
 using LeafBuildProgress = std::function<bool(double)>;
+
+/**
+ * The leaf with VTK objects of its own around the caller's values (points,
+ * cell arrays, data arrays; string arrays are copied). VTK's filters keep
+ * state in the objects they read (a cell array's traversal position, an
+ * array's cached range, the points' bounds), and leaves often share them
+ * (vtkTransformFilter's outputs share one cell array): a leaf read on another
+ * thread must be read through such a copy. leaf must not be null.
+ */
+vtkSmartPointer<vtkPolyData> CopyForAnotherThread(vtkPolyData* leaf);
 
 /// True when the leaf already carries the hierarchy (TOM arrays; for
 /// MergeTree also merge-tree arrays), so it needs no build.

@@ -4,7 +4,6 @@
 #include "LeafHierarchyBuild.h"
 
 #include "vtkObjectFactory.h"
-#include "vtkPoints.h"
 #include "vtkPolyData.h"
 
 #include <algorithm>
@@ -34,20 +33,6 @@ int DefaultThreads()
   return hardware > 0 ? static_cast<int>(hardware) : 1;
 }
 
-/// The queue's own copy of a leaf: the same arrays and cells, but a
-/// vtkPoints object of its own (vtkPoints caches its bounds when asked).
-vtkSmartPointer<vtkPolyData> CopyForWorker(vtkPolyData* leaf)
-{
-  auto copy = vtkSmartPointer<vtkPolyData>::New();
-  copy->ShallowCopy(leaf);
-  if (vtkPoints* points = leaf->GetPoints())
-  {
-    vtkNew<vtkPoints> own;
-    own->SetData(points->GetData());
-    copy->SetPoints(own);
-  }
-  return copy;
-}
 }
 
 struct vtkHierarchyBuildQueue::Internals
@@ -210,7 +195,7 @@ bool vtkHierarchyBuildQueue::Submit(uint64_t key, vtkPolyData* leaf, int hierarc
   }
   const vtkIdType cells = leaf->GetNumberOfCells();
   vtkSmartPointer<vtkPolyData> stored = lookup ? lookup(key, cells, hierarchy) : nullptr;
-  vtkSmartPointer<vtkPolyData> copy = stored ? nullptr : CopyForWorker(leaf);
+  vtkSmartPointer<vtkPolyData> copy = stored ? nullptr : timecritical::CopyForAnotherThread(leaf);
   std::lock_guard<std::mutex> lock(in.Mutex);
   if (in.Known(key))
   {
@@ -232,7 +217,11 @@ bool vtkHierarchyBuildQueue::Submit(uint64_t key, vtkPolyData* leaf, int hierarc
   job.Key = key;
   job.Cells = cells;
   job.Hierarchy = hierarchy;
+  // The job holds the only reference, so the copy is freed on the worker that
+  // read it (VTK's reference count is invisible to ThreadSanitizer; and
+  // vtkSmartPointer's assignment from an rvalue copies).
   job.Leaf = copy;
+  copy = nullptr;
   job.Cancelled = std::make_shared<std::atomic<bool>>(false);
   in.Queue.push_back(std::move(job));
   this->StartWorkers();

@@ -475,6 +475,48 @@ TEST_F(MultiresolutionHierarchyBuilder, ParallelBuildsEqualSerialBuildsBitForBit
   }
 }
 
+TEST_F(MultiresolutionHierarchyBuilder, LeavesSharingCellArraysBuildSafelyInParallel)
+{
+  // As vtkTransformFilter's outputs: points of their own, one vtkCellArray
+  // object for all. VTK's filters traverse a cell array through state kept in
+  // the object, so each build must read it through an object of its own.
+  auto base = Step(0.0, 40);
+  std::vector<vtkSmartPointer<vtkPolyData>> leaves;
+  for (int i = 0; i < 8; ++i)
+  {
+    auto leaf = Step(3.0 * i, 40);
+    leaf->SetPolys(base->GetPolys());
+    leaves.push_back(leaf);
+  }
+  auto input = Blocks(leaves);
+  vtkNew<vtkMultiresolutionHierarchyBuilder> serial;
+  vtkNew<vtkHierarchyBuildCache> serialCache;
+  serial->SetCache(serialCache);
+  serial->SetNumberOfThreads(1);
+  serial->SetInputData(input);
+  serial->Update();
+  auto* expected = vtkMultiBlockDataSet::SafeDownCast(serial->GetOutputDataObject(0));
+  for (int round = 0; round < 4; ++round)
+  {
+    vtkNew<vtkMultiresolutionHierarchyBuilder> parallel;
+    vtkNew<vtkHierarchyBuildCache> parallelCache;
+    parallel->SetCache(parallelCache);
+    parallel->SetNumberOfThreads(4);
+    parallel->SetInputData(input);
+    parallel->Update();
+    ASSERT_EQ(parallel->GetNumberOfBuiltLeaves(), 8);
+    auto* built = vtkMultiBlockDataSet::SafeDownCast(parallel->GetOutputDataObject(0));
+    for (unsigned int i = 0; i < 8; ++i)
+    {
+      SCOPED_TRACE("round " + std::to_string(round) + ", leaf " + std::to_string(i));
+      tt::ExpectSameArrays(Leaf(expected, i), Leaf(built, i));
+    }
+  }
+  // The caller's cell array is left as it was.
+  EXPECT_EQ(Leaf(input, 0)->GetPolys(), base->GetPolys());
+  EXPECT_EQ(base->GetPolys()->GetNumberOfCells(), Leaf(input, 7)->GetNumberOfPolys());
+}
+
 TEST_F(MultiresolutionHierarchyBuilder, IdenticalLeavesAreBuiltOnce)
 {
   auto sphere = Step(0.0);
