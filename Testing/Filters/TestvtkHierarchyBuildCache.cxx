@@ -23,6 +23,8 @@
 
 #include <gtest/gtest.h>
 
+#include <unistd.h> // getpid
+
 #include <atomic>
 #include <fstream>
 #include <functional>
@@ -65,7 +67,8 @@ vtkSmartPointer<vtkPolyData> BuildMergeTree(vtkPolyData* input)
 std::string ScratchDirectory(const std::string& name)
 {
   const std::string path =
-    std::string(TIMECRITICAL_TEST_OUTPUT_DIR) + "/HierarchyBuildCache-" + name;
+    std::string(TIMECRITICAL_TEST_OUTPUT_DIR) + "/HierarchyBuildCache-" + name + "-" +
+    std::to_string(::getpid()); // a folder per process: ctest runs programs side by side
   vtksys::SystemTools::RemoveADirectory(path);
   vtksys::SystemTools::MakeDirectory(path);
   return path;

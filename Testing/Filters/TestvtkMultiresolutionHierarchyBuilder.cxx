@@ -22,6 +22,8 @@
 
 #include <gtest/gtest.h>
 
+#include <unistd.h> // getpid
+
 #include <cmath>
 #include <fstream>
 #include <thread>
@@ -270,7 +272,8 @@ std::vector<vtkSmartPointer<vtkPolyData>> VariedLeaves(int count)
 std::string ScratchDirectory(const std::string& name)
 {
   const std::string path =
-    std::string(TIMECRITICAL_TEST_OUTPUT_DIR) + "/MultiresolutionHierarchyBuilder-" + name;
+    std::string(TIMECRITICAL_TEST_OUTPUT_DIR) + "/MultiresolutionHierarchyBuilder-" + name + "-" +
+    std::to_string(::getpid()); // a folder per process: ctest runs programs side by side
   vtksys::SystemTools::RemoveADirectory(path);
   return path;
 }
