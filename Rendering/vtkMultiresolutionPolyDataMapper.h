@@ -361,6 +361,13 @@ public:
   /// Hierarchies swapped in so far (each leaf's build once it is used).
   vtkGetMacro(NumberOfSwappedHierarchies, vtkIdType);
   /**
+   * Builds the background workers finished, and leaves they found in the
+   * process's hierarchy cache instead of building, so far (0 before the first
+   * background build).
+   */
+  vtkIdType GetNumberOfBackgroundBuilds();
+  vtkIdType GetNumberOfBackgroundCacheHits();
+  /**
    * Block until every pending build of the current leaves has finished and
    * is swapped in (for scripts and tests that need the final image). Does
    * nothing when BackgroundBuilds is off.
@@ -528,6 +535,8 @@ private:
   void PrepareBlockColors(vtkActor* act);
   vtkUnsignedCharArray* MapBlockColors(double alpha, int& cellFlag);
   void WriteBlockColors(vtkIdType i);
+  /// Drops the superclass's scalar texture (colours given per vertex or cell instead).
+  void ReleaseColorTexture();
   void UploadBlockColors();
 
   struct Internals;

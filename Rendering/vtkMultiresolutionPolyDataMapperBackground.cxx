@@ -85,6 +85,16 @@ int vtkMultiresolutionPolyDataMapper::GetNumberOfPendingHierarchies() const
   return this->BackgroundBuilds ? this->Internal->PendingHierarchies : 0;
 }
 
+vtkIdType vtkMultiresolutionPolyDataMapper::GetNumberOfBackgroundBuilds()
+{
+  return this->Internal->Queue ? this->Internal->Queue->GetNumberOfBuilds() : 0;
+}
+
+vtkIdType vtkMultiresolutionPolyDataMapper::GetNumberOfBackgroundCacheHits()
+{
+  return this->Internal->Queue ? this->Internal->Queue->GetNumberOfStoreHits() : 0;
+}
+
 vtkHierarchyBuildQueue* vtkMultiresolutionPolyDataMapper::GetBuildQueue()
 {
   Internals& in = *this->Internal;

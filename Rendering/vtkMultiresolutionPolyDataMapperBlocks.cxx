@@ -381,16 +381,7 @@ vtkUnsignedCharArray* vtkMultiresolutionPolyDataMapper::MapBlockColors(double al
     in.BlockColorsDirty = false;
   }
   // Colored per vertex or cell, never through the scalars' texture.
-  if (this->ColorCoordinates)
-  {
-    this->ColorCoordinates->UnRegister(this);
-    this->ColorCoordinates = nullptr;
-  }
-  if (this->ColorTextureMap)
-  {
-    this->ColorTextureMap->UnRegister(this);
-    this->ColorTextureMap = nullptr;
-  }
+  this->ReleaseColorTexture();
   setColors(in.BlockColors);
   return this->Colors;
 }

@@ -67,16 +67,7 @@ vtkUnsignedCharArray* vtkMultiresolutionPolyDataMapper::MapScalars(double alpha,
       this->Colors->Register(this);
     }
     in.ColorsAreResolutionMap = true;
-    if (this->ColorCoordinates)
-    {
-      this->ColorCoordinates->UnRegister(this);
-      this->ColorCoordinates = nullptr;
-    }
-    if (this->ColorTextureMap)
-    {
-      this->ColorTextureMap->UnRegister(this);
-      this->ColorTextureMap = nullptr;
-    }
+    this->ReleaseColorTexture();
     return this->Colors;
   }
   if (in.ColorsAreResolutionMap || (in.BlockColors && this->Colors == in.BlockColors))
@@ -592,5 +583,20 @@ void vtkMultiresolutionPolyDataMapper::UploadDirtyColors(vtkUnsignedCharArray* c
   for (auto& object : in.Objects)
   {
     object.ColorDirty = false;
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkMultiresolutionPolyDataMapper::ReleaseColorTexture()
+{
+  if (this->ColorCoordinates)
+  {
+    this->ColorCoordinates->UnRegister(this);
+    this->ColorCoordinates = nullptr;
+  }
+  if (this->ColorTextureMap)
+  {
+    this->ColorTextureMap->UnRegister(this);
+    this->ColorTextureMap = nullptr;
   }
 }

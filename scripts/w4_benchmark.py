@@ -271,7 +271,10 @@ class Probe:
         b = self.builder
         reused = b.GetNumberOfReusedLeaves() + (
             b.GetNumberOfLoadedLeaves() if hasattr(b, "GetNumberOfLoadedLeaves") else 0)
-        return (reused if executed else 0), self.queue_count("GetNumberOfStoreHits")
+        m = self.mapper
+        store = m.GetNumberOfBackgroundCacheHits() if hasattr(m, "GetNumberOfBackgroundCacheHits") \
+            else self.queue_count("GetNumberOfStoreHits")
+        return (reused if executed else 0), store
 
     def builder_stamp(self):
         """The modification time of the builder's output, 0 before any: read

@@ -3,6 +3,7 @@
 
 #include "CollapseEngine.h"
 #include "MergeTreeAttributes.h"
+#include "RadixSortByKey.h"
 
 #include <algorithm>
 #include <cmath>
@@ -61,6 +62,7 @@ namespace
 using collapse::Candidate;
 using collapse::CollapseEngine;
 using collapse::Invalid;
+using collapse::RadixSortByKey;
 using collapse::Prefetch;
 
 /// A candidate collapse: u's key as an order-preserving integer, u and its target.
@@ -94,46 +96,6 @@ constexpr uint32_t NoKey = std::numeric_limits<uint32_t>::max();
 /// A level that removes fewer than 1/ThinLevelDivisor of the live vertices
 /// (a full one removes about 1/8) releases the constraints early.
 constexpr uint32_t ThinLevelDivisor = 16;
-
-/// Stable LSD radix sort by Key (three passes of 11 bits), through `buffer`.
-void SortByKey(std::vector<Entry>& entries, std::vector<Entry>& buffer)
-{
-  constexpr unsigned bits = 11, buckets = 1u << bits, mask = buckets - 1;
-  static_assert(3 * bits >= 32, "three passes cover the key");
-  const size_t n = entries.size();
-  if (n < 2)
-  {
-    return;
-  }
-  std::vector<uint32_t> counts(3 * buckets, 0);
-  for (const Entry& e : entries)
-  {
-    ++counts[e.Key & mask];
-    ++counts[buckets + ((e.Key >> bits) & mask)];
-    ++counts[2 * buckets + (e.Key >> (2 * bits))];
-  }
-  buffer.resize(n);
-  for (unsigned pass = 0; pass < 3; ++pass)
-  {
-    uint32_t* count = counts.data() + pass * buckets;
-    if (count[entries[0].Key >> (pass * bits) & mask] == n)
-    {
-      continue; // one bucket only: this digit is the same everywhere
-    }
-    uint32_t sum = 0;
-    for (unsigned b = 0; b < buckets; ++b)
-    {
-      const uint32_t c = count[b];
-      count[b] = sum;
-      sum += c;
-    }
-    for (const Entry& e : entries)
-    {
-      buffer[count[e.Key >> (pass * bits) & mask]++] = e;
-    }
-    entries.swap(buffer);
-  }
-}
 
 /// Min-heap order of re-queued entries (std heaps are max-heaps).
 bool LaterEntry(const Entry& a, const Entry& b)
@@ -267,7 +229,7 @@ void LevelSchedule::CollectAll()
       this->Current.push_back(entry);
     }
   }
-  SortByKey(this->Current, this->Buffer);
+  RadixSortByKey(this->Current, this->Buffer);
 }
 
 //------------------------------------------------------------------------------
@@ -290,7 +252,7 @@ void LevelSchedule::CollectNext()
       this->Fresh.push_back(entry);
     }
   }
-  SortByKey(this->Fresh, this->Buffer);
+  RadixSortByKey(this->Fresh, this->Buffer);
   this->Buffer.clear();
   auto a = this->Fresh.cbegin();
   const auto aEnd = this->Fresh.cend();

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "PassSchedule.h"
 
+#include "RadixSortByKey.h"
+
 #include "CollapseEngine.h"
 
 #include <algorithm>
@@ -34,48 +36,6 @@ uint32_t PassSchedule::OrderedBits(float key)
 }
 
 //------------------------------------------------------------------------------
-void PassSchedule::SortByKey(std::vector<Entry>& entries, std::vector<Entry>& buffer)
-{
-  // Least significant digit first, three digits of 11 bits; a digit that is
-  // the same in every entry is skipped.
-  constexpr unsigned bits = 11, buckets = 1u << bits, mask = buckets - 1;
-  const size_t n = entries.size();
-  if (n < 2)
-  {
-    return;
-  }
-  std::array<uint32_t, 3 * buckets> counts{}; // on the stack: a pass does not allocate
-  for (const Entry& e : entries)
-  {
-    ++counts[e.Key & mask];
-    ++counts[buckets + ((e.Key >> bits) & mask)];
-    ++counts[2 * buckets + (e.Key >> (2 * bits))];
-  }
-  buffer.resize(n);
-  for (unsigned digit = 0; digit < 3; ++digit)
-  {
-    uint32_t* count = counts.data() + digit * buckets;
-    const unsigned shift = digit * bits;
-    if (count[(entries[0].Key >> shift) & mask] == n)
-    {
-      continue;
-    }
-    uint32_t sum = 0;
-    for (unsigned b = 0; b < buckets; ++b)
-    {
-      const uint32_t c = count[b];
-      count[b] = sum;
-      sum += c;
-    }
-    for (const Entry& e : entries)
-    {
-      buffer[count[(e.Key >> shift) & mask]++] = e;
-    }
-    entries.swap(buffer);
-  }
-}
-
-//------------------------------------------------------------------------------
 void PassSchedule::Collect()
 {
   // Every live vertex with a finite key, in vertex order (the tie-break of the
@@ -98,7 +58,7 @@ void PassSchedule::Collect()
     }
   }
   this->Live.resize(kept);
-  SortByKey(this->List, this->Buffer);
+  RadixSortByKey(this->List, this->Buffer);
 }
 
 //------------------------------------------------------------------------------
@@ -117,7 +77,7 @@ void PassSchedule::CollectNext()
       this->Fresh.push_back({ OrderedBits(key), v });
     }
   }
-  SortByKey(this->Fresh, this->Buffer);
+  RadixSortByKey(this->Fresh, this->Buffer);
   this->Buffer.clear();
   auto a = this->Fresh.cbegin();
   const auto aEnd = this->Fresh.cend();

@@ -63,8 +63,6 @@ public:
     uint32_t Vertex;
   };
 
-  /// Stable radix sort of entries by Key, through `buffer` (exposed for its test).
-  static void SortByKey(std::vector<Entry>& entries, std::vector<Entry>& buffer);
   /// A float key as unsigned bits of the same order.
   static uint32_t OrderedBits(float key);
 

@@ -126,6 +126,7 @@ TEST_F(MultiresolutionMapperBackground, DrawsWhileBuildingThenSwapsTheHierarchyI
   scene.Render();
   EXPECT_EQ(mapper->GetRenderedTriangles(), full);
   EXPECT_EQ(mapper->GetNumberOfSwappedHierarchies(), 0);
+  EXPECT_EQ(mapper->GetNumberOfBackgroundBuilds(), 0);
 
   // Once done, the next render swaps the hierarchy in, without a pipeline update.
   gate.Release();
@@ -135,6 +136,8 @@ TEST_F(MultiresolutionMapperBackground, DrawsWhileBuildingThenSwapsTheHierarchyI
   EXPECT_TRUE(mapper->GetObjectIsTOM(0));
   EXPECT_EQ(mapper->GetNumberOfPendingHierarchies(), 0);
   EXPECT_EQ(mapper->GetNumberOfSwappedHierarchies(), 1);
+  EXPECT_EQ(mapper->GetNumberOfBackgroundBuilds(), 1);
+  EXPECT_EQ(mapper->GetNumberOfBackgroundCacheHits(), 0);
   EXPECT_EQ(mapper->GetObjectNumberOfTriangles(0), full);
   EXPECT_LT(mapper->GetObjectCoarsestResolution(0), 0.2);
   EXPECT_GT(mapper->GetVertexBufferBuildCount(), vertexBuilds); // reordered vertices uploaded
@@ -230,6 +233,8 @@ TEST_F(MultiresolutionMapperBackground, ContentShownAgainComesFromTheSharedCache
   EXPECT_TRUE(second->GetObjectIsTOM(0));
   EXPECT_EQ(second->GetBuildQueue()->GetNumberOfBuilds(), 0);
   EXPECT_EQ(second->GetBuildQueue()->GetNumberOfStoreHits(), 1);
+  EXPECT_EQ(second->GetNumberOfBackgroundCacheHits(), 1);
+  EXPECT_EQ(second->GetNumberOfBackgroundBuilds(), 0);
 }
 
 TEST_F(MultiresolutionMapperBackground, EqualLeavesAreBuiltOnce)

@@ -49,44 +49,6 @@ TEST(PassSchedule, OrderedBitsKeepTheOrderOfFloats)
   }
 }
 
-TEST(PassSchedule, SortByKeyIsAStableSort)
-{
-  std::mt19937 random(5);
-  std::uniform_real_distribution<float> value(-10.f, 10.f);
-  std::vector<Entry> entries, buffer;
-  for (uint32_t v = 0; v < 20000; ++v)
-  {
-    // Few distinct keys (ties), across every digit of the bits.
-    const float key = v % 3 == 0 ? std::ldexp(value(random), int(v % 40) - 20) : float(v % 7);
-    entries.push_back({ PassSchedule::OrderedBits(key), v });
-  }
-  std::vector<Entry> expected = entries;
-  std::stable_sort(expected.begin(), expected.end(),
-    [](const Entry& a, const Entry& b) { return a.Key < b.Key; });
-  PassSchedule::SortByKey(entries, buffer);
-  ASSERT_EQ(entries.size(), expected.size());
-  for (size_t i = 0; i < entries.size(); ++i)
-  {
-    ASSERT_EQ(entries[i].Vertex, expected[i].Vertex) << i;
-    ASSERT_EQ(entries[i].Key, expected[i].Key) << i;
-  }
-  // Single and empty lists, and a list whose keys are all the same.
-  std::vector<Entry> one = { { 7u, 3u } }, none, same(100, Entry{ 42u, 0u });
-  for (uint32_t i = 0; i < same.size(); ++i)
-  {
-    same[i].Vertex = i;
-  }
-  PassSchedule::SortByKey(one, buffer);
-  PassSchedule::SortByKey(none, buffer);
-  PassSchedule::SortByKey(same, buffer);
-  EXPECT_EQ(one[0].Vertex, 3u);
-  EXPECT_TRUE(none.empty());
-  for (uint32_t i = 0; i < same.size(); ++i)
-  {
-    EXPECT_EQ(same[i].Vertex, i);
-  }
-}
-
 TEST(PassSchedule, ManyCollapsesPerPass)
 {
   // Driven directly: a full TOM in passes, each pass many independent
