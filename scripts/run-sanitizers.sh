@@ -47,7 +47,7 @@ nice -n 10 ctest --output-on-failure -L render -LE python -E "$timing_tests" "$@
 # ThreadSanitizer: the tests labelled threads, built alone.
 if [ "${TIMECRITICAL_TSAN:-1}" != 0 ]; then
   tsan_build="${TIMECRITICAL_TSAN_BUILD_DIR:-$root/build-tsan}"
-  tsan_targets="${TIMECRITICAL_TSAN_TARGETS:-TestvtkHierarchyBuildQueue TestvtkMultiresolutionPolyDataMapperBackground TestvtkMultiresolutionHierarchyBuilder TestvtkHierarchyBuildCache}"
+  tsan_targets="${TIMECRITICAL_TSAN_TARGETS:-TestvtkHierarchyBuildQueue TestvtkMultiresolutionPolyDataMapperBackground TestvtkMultiresolutionHierarchyBuilder TestvtkHierarchyBuildCache TestLeafHierarchyBuild}"
   mkdir -p "$tsan_build"
   nice -n 10 cmake -S "$root" -B "$tsan_build" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
     "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1" "-DCMAKE_C_FLAGS_RELWITHDEBINFO=-O1 -g1" \
