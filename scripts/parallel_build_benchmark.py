@@ -25,6 +25,7 @@ from vtkmodules.vtkIOGeometry import vtkOBJReader
 from vtkmodules.vtkIOPLY import vtkPLYReader
 
 import timecritical  # noqa: F401
+from ply_strips import read_ply_tristrips
 from timecritical.TimeCriticalFilters import (vtkHierarchyBuildCache,
                                               vtkMultiresolutionHierarchyBuilder)
 
@@ -36,7 +37,12 @@ def read_mesh(path):
     reader = vtkPLYReader() if path.endswith(".ply") else vtkOBJReader()
     reader.SetFileName(path)
     reader.Update()
-    return reader.GetOutput()
+    mesh = reader.GetOutput()
+    if path.endswith(".ply") and mesh.GetNumberOfPolys() == 0:
+        mesh = read_ply_tristrips(path)  # vtkPLYReader drops triangle strips
+    if mesh.GetNumberOfPolys() == 0:
+        raise RuntimeError("%s holds no polygons" % path)
+    return mesh
 
 
 def moved_copies(mesh, count):
