@@ -87,6 +87,14 @@ public:
    */
   bool Submit(uint64_t key, vtkPolyData* leaf, int hierarchy);
 
+  /**
+   * The stored result of `key` (SetResultStore()'s lookup), counted as a
+   * store hit, or null without a store or a stored result. Lets a caller
+   * use a stored hierarchy at once instead of drawing a stand-in until the
+   * next Take().
+   */
+  vtkSmartPointer<vtkPolyData> FindStored(uint64_t key, vtkIdType cells, int hierarchy);
+
   /// Queued or running (not finished) under key.
   bool IsPending(uint64_t key);
   /// Builds queued or running.
@@ -104,6 +112,17 @@ public:
   int Cancel(uint64_t key);
   int CancelAllExcept(const std::vector<uint64_t>& keep);
   int CancelAll();
+  ///@}
+
+  ///@{
+  /**
+   * Lower the workers' scheduling priority (Linux: a nice value of 10 for
+   * each worker thread; elsewhere ignored). On by default: a build then takes
+   * only what the thread that draws leaves, so it never slows a frame.
+   * Applies to workers started after the call.
+   */
+  void SetLowPriorityWorkers(bool low);
+  bool GetLowPriorityWorkers();
   ///@}
 
   /// Block until no build is queued or running (results wait to be taken).

@@ -140,6 +140,13 @@ bool vtkMultiresolutionPolyDataMapper::TakeBuiltHierarchies()
   {
     return false; // the usual frame: no lock held long, nothing allocated
   }
+  const auto now = std::chrono::steady_clock::now();
+  if (in.Queue->GetNumberOfPending() > 0 &&
+    now - in.LastSwap < std::chrono::duration<double>(Internals::SwapInterval))
+  {
+    return false; // more builds to come: swap them in together
+  }
+  in.LastSwap = now;
   in.Taken.clear();
   in.Queue->Take(in.Taken);
   bool swap = false;
@@ -241,6 +248,13 @@ void vtkMultiresolutionPolyDataMapper::Internals::SubstituteBuiltLeaves(
       leaves[k].first = built->second;
       continue;
     }
+    if (vtkSmartPointer<vtkPolyData> stored =
+          self->GetBuildQueue()->FindStored(key, leaf->GetNumberOfCells(), hierarchy))
+    {
+      this->Built[key] = stored; // built before (an earlier step or edit): no stand-in
+      leaves[k].first = stored;
+      continue;
+    }
     explained[k] = 1;
     if (this->Failed.count(key) == 0)
     {
@@ -275,4 +289,8 @@ void vtkMultiresolutionPolyDataMapper::Internals::SubstituteBuiltLeaves(
   }
   this->CurrentKeys.swap(keys);
   this->PendingHierarchies = pending;
+  if (pending > 0)
+  {
+    this->LastSwap = std::chrono::steady_clock::now();
+  }
 }

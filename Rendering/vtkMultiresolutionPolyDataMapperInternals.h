@@ -29,6 +29,7 @@
 #include "vtkStateStorage.h"
 #include "vtkTimeStamp.h"
 
+#include <chrono>
 #include <cstdint>
 #include <map>
 #include <memory>
@@ -302,6 +303,10 @@ struct vtkMultiresolutionPolyDataMapper::Internals
   std::vector<std::pair<uint64_t, unsigned int>> CurrentKeys;
   std::vector<vtkHierarchyBuildQueue::Result> Taken;
   int PendingHierarchies = 0;
+  // Every swap reads all objects again (a stall on large inputs): while builds
+  // go on, finished ones are swapped in at most once per SwapInterval.
+  static constexpr double SwapInterval = 2.0; // seconds
+  std::chrono::steady_clock::time_point LastSwap;
   bool ForceRead = false;       // a background setting changed: read the objects again
   bool BackgroundReset = false; // forget the builds at the next read
 

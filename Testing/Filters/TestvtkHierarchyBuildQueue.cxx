@@ -15,12 +15,23 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
+#include <fstream>
+#include <sstream>
+#include <string>
 #include <condition_variable>
 #include <map>
 #include <mutex>
 #include <thread>
 #include <vector>
+
+#ifdef __linux__
+#include <dirent.h>
+#include <sys/resource.h>
+#include <sys/syscall.h>
+#include <unistd.h>
+#endif
 
 namespace
 {
@@ -260,6 +271,89 @@ TEST(HierarchyBuildQueue, StoreIsLookedUpBeforeABuildAndFilledAfter)
   EXPECT_EQ(second->GetNumberOfBuilds(), 0);
   EXPECT_EQ(second->GetNumberOfStoreHits(), 1);
 }
+
+TEST(HierarchyBuildQueue, FindStoredGivesTheStoredResultAndCountsIt)
+{
+  auto sphere = tt::MakeSphere(10);
+  vtkNew<vtkHierarchyBuildQueue> queue;
+  EXPECT_EQ(queue->FindStored(5, sphere->GetNumberOfCells(), 0), nullptr); // no store
+  auto stored = vtkSmartPointer<vtkPolyData>::New();
+  queue->SetResultStore(
+    [&stored](uint64_t key, vtkIdType, int hierarchy) -> vtkSmartPointer<vtkPolyData> {
+      return key == 5 && hierarchy == 0 ? stored : nullptr;
+    },
+    nullptr);
+  EXPECT_EQ(queue->FindStored(6, sphere->GetNumberOfCells(), 0), nullptr);
+  EXPECT_EQ(queue->FindStored(5, sphere->GetNumberOfCells(), 1), nullptr);
+  EXPECT_EQ(queue->GetNumberOfStoreHits(), 0);
+  EXPECT_EQ(queue->FindStored(5, sphere->GetNumberOfCells(), 0), stored);
+  EXPECT_EQ(queue->GetNumberOfStoreHits(), 1);
+  EXPECT_EQ(queue->GetNumberOfPending(), 0); // nothing queued
+}
+
+#ifdef __linux__
+/// Nice values of this process's threads other than the calling one.
+std::vector<int> OtherThreadsNiceValues()
+{
+  std::vector<int> values;
+  const std::string self = std::to_string(static_cast<long>(syscall(SYS_gettid)));
+  DIR* tasks = opendir("/proc/self/task");
+  for (dirent* entry = tasks ? readdir(tasks) : nullptr; entry; entry = readdir(tasks))
+  {
+    const std::string name = entry->d_name;
+    if (name == "." || name == ".." || name == self)
+    {
+      continue;
+    }
+    std::ifstream stat("/proc/self/task/" + name + "/stat");
+    std::string line;
+    std::getline(stat, line);
+    // Fields after the command's closing parenthesis; the nice value is field 19.
+    std::istringstream fields(line.substr(line.rfind(')') + 2));
+    std::string field;
+    for (int i = 3; i <= 19 && fields >> field; ++i)
+    {
+      if (i == 19)
+      {
+        values.push_back(std::stoi(field));
+      }
+    }
+  }
+  if (tasks)
+  {
+    closedir(tasks);
+  }
+  return values;
+}
+
+int WorkersNiceValueWhileBuilding(bool low)
+{
+  vtkNew<vtkHierarchyBuildQueue> queue;
+  queue->SetNumberOfThreads(1);
+  queue->SetLowPriorityWorkers(low);
+  EXPECT_EQ(queue->GetLowPriorityWorkers(), low);
+  Gate gate;
+  gate.Install(queue);
+  auto sphere = tt::MakeSphere(10);
+  queue->Submit(1, sphere, 0);
+  gate.WaitForArrivals(1);
+  int highest = -100;
+  for (int value : OtherThreadsNiceValues())
+  {
+    highest = std::max(highest, value);
+  }
+  gate.Release();
+  queue->WaitAll();
+  return highest;
+}
+
+TEST(HierarchyBuildQueue, WorkersRunAtLowPriorityUnlessAskedNotTo)
+{
+  const int ours = getpriority(PRIO_PROCESS, static_cast<id_t>(syscall(SYS_gettid)));
+  EXPECT_GE(WorkersNiceValueWhileBuilding(true), std::max(ours, 10));
+  EXPECT_EQ(WorkersNiceValueWhileBuilding(false), ours);
+}
+#endif
 
 TEST(HierarchyBuildQueue, ManySubmittersAndCancellersAtOnce)
 {

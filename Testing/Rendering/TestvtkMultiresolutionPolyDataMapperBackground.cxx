@@ -7,11 +7,13 @@
 #include "MultiresolutionMapperTestSupport.h"
 #include "vtkHierarchyBuildCache.h"
 #include "vtkHierarchyBuildQueue.h"
-#include "vtkHierarchyBuildCache.h"
 #include "vtkTimeCriticalRenderer.h"
 
+#include <chrono>
 #include <condition_variable>
 #include <mutex>
+#include <optional>
+#include <thread>
 
 namespace
 {
@@ -229,6 +231,9 @@ TEST_F(MultiresolutionMapperBackground, ContentShownAgainComesFromTheSharedCache
   second->BackgroundBuildsOn();
   Scene other(second);
   other.Render();
+  // In the first frame: no stand-in drawn, no build queued.
+  EXPECT_TRUE(second->GetObjectIsTOM(0));
+  EXPECT_EQ(second->GetNumberOfPendingHierarchies(), 0);
   other.Render();
   EXPECT_TRUE(second->GetObjectIsTOM(0));
   EXPECT_EQ(second->GetBuildQueue()->GetNumberOfBuilds(), 0);
@@ -253,6 +258,65 @@ TEST_F(MultiresolutionMapperBackground, EqualLeavesAreBuiltOnce)
   EXPECT_TRUE(mapper->GetObjectIsTOM(0));
   EXPECT_TRUE(mapper->GetObjectIsTOM(1));
   EXPECT_EQ(mapper->GetBuildQueue()->GetNumberOfBuilds(), 1);
+}
+
+TEST_F(MultiresolutionMapperBackground, FinishedBuildsWaitForTheRestOrForTheSwapInterval)
+{
+  // Each swap reads every object again, so builds that finish one by one are
+  // swapped in together: when the last one is done, or after the interval.
+  vtkNew<vtkMultiBlockDataSet> blocks;
+  blocks->SetNumberOfBlocks(2);
+  blocks->SetBlock(0, Surface(0.0));
+  blocks->SetBlock(1, Surface(3.0));
+  vtkNew<vtkMultiresolutionPolyDataMapper> mapper;
+  mapper->SetInputDataObject(blocks);
+  mapper->BackgroundBuildsOn();
+  vtkHierarchyBuildQueue* queue = mapper->GetBuildQueue();
+  std::mutex mutex;
+  std::condition_variable changed;
+  std::optional<uint64_t> firstKey; // a build reports progress more than once
+  bool open = false;
+  queue->SetProgressHook([&](uint64_t key, double) {
+    std::unique_lock<std::mutex> lock(mutex);
+    if (!firstKey)
+    {
+      firstKey = key;
+    }
+    if (key != *firstKey)
+    {
+      changed.wait(lock, [&open] { return open; }); // the second build is held
+    }
+  });
+  Scene scene(mapper);
+  const auto submitted = std::chrono::steady_clock::now();
+  scene.Render();
+  for (int i = 0; i < 1000 && queue->GetNumberOfFinished() < 1; ++i)
+  {
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  ASSERT_EQ(queue->GetNumberOfFinished(), 1);
+  auto countTOMs = [&mapper] {
+    return int(mapper->GetObjectIsTOM(0)) + int(mapper->GetObjectIsTOM(1));
+  };
+  if (std::chrono::steady_clock::now() - submitted < std::chrono::milliseconds(1500))
+  {
+    scene.Render(); // within the interval, with a build still running: no swap
+    EXPECT_EQ(countTOMs(), 0);
+    EXPECT_EQ(mapper->GetNumberOfSwappedHierarchies(), 0);
+  }
+  std::this_thread::sleep_until(submitted + std::chrono::milliseconds(2100));
+  scene.Render(); // the interval passed: the finished one comes in
+  EXPECT_EQ(countTOMs(), 1);
+  EXPECT_EQ(mapper->GetNumberOfSwappedHierarchies(), 1);
+  {
+    std::lock_guard<std::mutex> lock(mutex);
+    open = true;
+  }
+  changed.notify_all();
+  mapper->WaitForHierarchies();
+  EXPECT_EQ(countTOMs(), 2);
+  EXPECT_EQ(mapper->GetNumberOfSwappedHierarchies(), 2);
+  queue->SetProgressHook(nullptr);
 }
 
 TEST_F(MultiresolutionMapperBackground, RendererWaitsForItsMappers)
