@@ -44,14 +44,16 @@ void GreedyTupleSelector::GetCandidates(
   out.clear();
   for (std::size_t a = 0; a < p.AlgorithmCount; ++a)
   {
+    // The coarsest mesh, then the levels above it (clamped to what pays).
     const double lo = p.Lo(i, a), hi = p.Hi(i, a);
-    double last = -1.0;
+    const int ai = static_cast<int>(a);
+    out.push_back({ ai, lo, p.Cost(i, ai, lo), p.Degradation(i, ai, lo) });
+    double last = lo;
     for (double level : this->Levels)
     {
       const double r = std::min(hi, std::max(lo, level));
       if (r != last)
       {
-        const int ai = static_cast<int>(a);
         out.push_back({ ai, r, p.Cost(i, ai, r), p.Degradation(i, ai, r) });
         last = r;
       }
@@ -190,6 +192,21 @@ TupleProblem::Solution GreedyTupleSelector::Solve(const TupleProblem& p, int* a,
     }
     a[i] = this->Points[k].Algorithm;
     r[i] = this->Points[k].Resolution;
+  }
+  // Value order: no object dropped while a less valuable, costlier one is
+  // drawn (the swap fits: the dropped one's cheapest tuple costs less).
+  for (std::size_t swaps = 0; dropping && swaps < n; ++swaps)
+  {
+    std::size_t i = n, j = n;
+    if (!p.FindValueOrderViolation(a, i, j))
+    {
+      break;
+    }
+    a[i] = p.CheapestAlgorithm(i);
+    r[i] = p.Lo(i, static_cast<std::size_t>(a[i]));
+    a[j] = TupleProblem::NotDrawn;
+    r[j] = 0.0;
+    ++s.Iterations;
   }
   p.Summarize(a, r, s);
   return s;

@@ -14,7 +14,7 @@ namespace timecritical
 /**
  * Funkhouser & Séquin's greedy choice of object tuples (section 6), for the
  * discrete side (GreedyLODPolicy): each object's candidates are its levels
- * of detail (GetLevels(), clamped to the tuple's [lo, hi]) times the
+ * of detail (its coarsest mesh lo and GetLevels() clamped to [lo, hi]) times the
  * algorithms of the TupleProblem, plus, when TupleProblem::NeedsDropping(),
  * a bounding box and "not drawn"; Benefit = minus the tuple's degradation,
  * Cost = its predicted time.
@@ -33,6 +33,10 @@ namespace timecritical
  * did not fit taken alone (every other object at its base), and the better
  * one returned, which gives the bound the paper cites [Garey & Johnson]:
  *   benefit over the base >= 1/2 of the optimum's, among these candidates.
+ * Then, when dropping, an object is never left out while a less valuable
+ * one (less to lose) whose cheapest tuple costs more is drawn: the two are
+ * swapped (TupleProblem::FindValueOrderViolation()); the greedy rarely
+ * needs it, and the swap may cost a little of the bound.
  * Solution::LowerBound is the linear relaxation's bound on the optimal
  * objective among these candidates. O(N log N) for N candidates.
  */

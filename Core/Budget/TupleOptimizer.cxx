@@ -43,6 +43,20 @@ TupleOptimizer::TupleOptimizer(const Options& options)
 {
 }
 
+double TupleOptimizer::TupleResolution(std::size_t i, std::size_t a, double lambda) const
+{
+  const TupleProblem& p = *this->P;
+  const std::size_t k = i * p.AlgorithmCount + a;
+  const double c = p.Weight[k], t = p.MaxTime[k];
+  const double lo = p.Lo(i, a), hi = p.Hi(i, a);
+  if (!(t > 0.0 && c > 0.0))
+  {
+    return lo;
+  }
+  const double r = lambda > 0.0 ? std::min(hi, std::max(lo, Root(c / (lambda * t), p.Alpha[a]))) : hi;
+  return std::isfinite(r) ? r : (lambda > 0.0 ? lo : hi);
+}
+
 double TupleOptimizer::Best(std::size_t i, double lambda, int& bestA, double& bestR) const
 {
   const TupleProblem& p = *this->P;
@@ -60,16 +74,7 @@ double TupleOptimizer::Best(std::size_t i, double lambda, int& bestA, double& be
   };
   for (std::size_t a = 0; a < p.AlgorithmCount; ++a)
   {
-    const std::size_t k = i * p.AlgorithmCount + a;
-    const double c = p.Weight[k], t = p.MaxTime[k];
-    const double lo = p.Lo(i, a), hi = p.Hi(i, a);
-    double r = lo;
-    if (t > 0.0 && c > 0.0)
-    {
-      r = lambda > 0.0 ? std::min(hi, std::max(lo, Root(c / (lambda * t), p.Alpha[a]))) : hi;
-      r = std::isfinite(r) ? r : (lambda > 0.0 ? lo : hi);
-    }
-    offer(static_cast<int>(a), r);
+    offer(static_cast<int>(a), this->TupleResolution(i, a, lambda));
   }
   if (this->Drop)
   {
@@ -184,38 +189,6 @@ bool TupleOptimizer::SolveResolutions(const int* a, double* r, int& iterations)
   }
   at(muHigh, r);
   return true;
-}
-
-void TupleOptimizer::TryJumpers(int* a, double* r, double& objective, int& iterations)
-{
-  const TupleProblem& p = *this->P;
-  const std::size_t n = p.Count;
-  // The most valuable switches first: the largest drop of degradation.
-  std::sort(this->Jumpers.begin(), this->Jumpers.end(), [&](std::size_t x, std::size_t y) {
-    const double gx = p.Degradation(x, a[x], r[x]) - p.Degradation(x, this->LowA[x], this->LowR[x]);
-    const double gy = p.Degradation(y, a[y], r[y]) - p.Degradation(y, this->LowA[y], this->LowR[y]);
-    return gx != gy ? gx > gy : x < y;
-  });
-  const std::size_t tries = std::min(this->Opts.Candidates, this->Jumpers.size());
-  for (std::size_t j = 0; j < tries; ++j)
-  {
-    const std::size_t i = this->Jumpers[j];
-    std::copy(a, a + n, this->TryA.begin());
-    std::copy(r, r + n, this->TryR.begin());
-    this->TryA[i] = this->LowA[i];
-    this->TryR[i] = this->LowR[i];
-    if (!this->SolveResolutions(this->TryA.data(), this->TryR.data(), iterations))
-    {
-      continue;
-    }
-    const double f = p.Objective(this->TryA.data(), this->TryR.data());
-    if (f < objective && p.TotalCost(this->TryA.data(), this->TryR.data()) <= this->Budget)
-    {
-      objective = f;
-      std::copy(this->TryA.begin(), this->TryA.begin() + static_cast<std::ptrdiff_t>(n), a);
-      std::copy(this->TryR.begin(), this->TryR.begin() + static_cast<std::ptrdiff_t>(n), r);
-    }
-  }
 }
 
 TupleProblem::Solution TupleOptimizer::Solve(const TupleProblem& problem, int* a, double* r)
@@ -333,17 +306,14 @@ TupleProblem::Solution TupleOptimizer::Solve(const TupleProblem& problem, int* a
   // Step 1: spend the time the jump left on the resolutions of the chosen algorithms.
   double objective = problem.Objective(a, r);
   std::copy(a, a + n, this->TryA.begin());
-  std::copy(r, r + n, this->TryR.begin());
-  if (this->SolveResolutions(this->TryA.data(), this->TryR.data(), s.Iterations))
-  {
-    const double f = problem.Objective(this->TryA.data(), this->TryR.data());
-    if (f <= objective && problem.TotalCost(this->TryA.data(), this->TryR.data()) <= this->Budget)
-    {
-      objective = f;
-      std::copy(this->TryR.begin(), this->TryR.begin() + static_cast<std::ptrdiff_t>(n), r);
-    }
-  }
-  // Step 2: the objects whose tuple changes across the jump.
+  this->Accept(a, r, this->Evaluate(s.Iterations), objective);
+  // Step 2: fill the time left, then re-solve.
+  this->Fill(a, r, high);
+  std::copy(a, a + n, this->TryA.begin());
+  const double filled = this->Evaluate(s.Iterations);
+  objective = problem.Objective(a, r);
+  this->Accept(a, r, filled, objective);
+  // Step 3: local search on the candidates.
   this->Jumpers.clear();
   for (std::size_t i = 0; i < n; ++i)
   {
@@ -352,7 +322,20 @@ TupleProblem::Solution TupleOptimizer::Solve(const TupleProblem& problem, int* a
       this->Jumpers.push_back(i);
     }
   }
-  this->TryJumpers(a, r, objective, s.Iterations);
+  if (n <= this->Opts.SearchLimit)
+  {
+    this->ChooseCandidates(a, r, high);
+    this->LocalSearch(a, r, high, objective, s.Iterations);
+    this->Fill(a, r, high); // the time a search move may have left
+    std::copy(a, a + n, this->TryA.begin());
+    const double refilled = this->Evaluate(s.Iterations);
+    objective = problem.Objective(a, r);
+    this->Accept(a, r, refilled, objective);
+  }
+  if (this->Drop)
+  {
+    this->KeepValueOrder(a, r, objective, s.Iterations);
+  }
   return finish();
 }
 }

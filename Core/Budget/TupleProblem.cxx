@@ -7,6 +7,7 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace timecritical
 {
@@ -206,5 +207,55 @@ void TupleProblem::Summarize(const int* algorithms, const double* r, Solution& s
     s.Boxed += algorithms[i] == BoundingBox ? 1 : 0;
     s.Dropped += algorithms[i] == NotDrawn ? 1 : 0;
   }
+}
+
+bool TupleProblem::FindValueOrderViolation(
+  const int* algorithms, std::size_t& dropped, std::size_t& drawn) const
+{
+  if (!this->DropDegradation)
+  {
+    return false;
+  }
+  // Drawn objects by value, with the costliest (at its cheapest tuple) of
+  // each prefix: a dropped object is out of order when a less valuable drawn
+  // one costs more.
+  const std::size_t n = this->Count;
+  std::vector<double> cheapest(n);
+  std::vector<std::size_t> order, costliest;
+  for (std::size_t j = 0; j < n; ++j)
+  {
+    cheapest[j] = this->Cost(j, this->CheapestAlgorithm(j), 0.0);
+    if (algorithms[j] >= 0)
+    {
+      order.push_back(j);
+    }
+  }
+  const double* value = this->DropDegradation;
+  std::sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) {
+    return value[x] != value[y] ? value[x] < value[y] : x < y;
+  });
+  costliest.resize(order.size());
+  for (std::size_t k = 0; k < order.size(); ++k)
+  {
+    const std::size_t j = order[k];
+    costliest[k] = k > 0 && cheapest[costliest[k - 1]] >= cheapest[j] ? costliest[k - 1] : j;
+  }
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    if (algorithms[i] != NotDrawn)
+    {
+      continue;
+    }
+    const auto end = std::lower_bound(order.begin(), order.end(), i,
+      [&](std::size_t x, std::size_t y) { return value[x] < value[y]; });
+    const std::size_t k = static_cast<std::size_t>(end - order.begin());
+    if (k > 0 && cheapest[costliest[k - 1]] > cheapest[i])
+    {
+      dropped = i;
+      drawn = costliest[k - 1];
+      return true;
+    }
+  }
+  return false;
 }
 }

@@ -92,6 +92,13 @@ struct TIMECRITICALBUDGETCORE_EXPORT TupleProblem
   /// Whether the levels below the coarsest mesh are in play: AllowDrop and the
   /// cheapest drawn tuples exceed the budget.
   bool NeedsDropping() const;
+  /**
+   * The value order of dropping: finds an object not drawn (dropped) while a
+   * less valuable one (smaller DropDegradation: less to lose) whose
+   * cheapest tuple costs more is drawn with a mesh (drawn); false when there
+   * is none. O(n log n); allocates.
+   */
+  bool FindValueOrderViolation(const int* algorithms, std::size_t& dropped, std::size_t& drawn) const;
   /// Fill in Objective, Cost, Boxed, Dropped of s from a choice.
   void Summarize(const int* algorithms, const double* r, Solution& s) const;
 };
