@@ -313,7 +313,7 @@ TupleProblem::Solution TupleOptimizer::Solve(const TupleProblem& problem, int* a
   const double filled = this->Evaluate(s.Iterations);
   objective = problem.Objective(a, r);
   this->Accept(a, r, filled, objective);
-  // Step 3: local search on the candidates.
+  // Steps 3 and 4: the greedy start, the local search on the candidates.
   this->Jumpers.clear();
   for (std::size_t i = 0; i < n; ++i)
   {
@@ -322,10 +322,20 @@ TupleProblem::Solution TupleOptimizer::Solve(const TupleProblem& problem, int* a
       this->Jumpers.push_back(i);
     }
   }
-  if (n <= this->Opts.SearchLimit)
+  // Second start: the greedy's assignment (discrete levels, packed by
+  // value), its resolutions re-solved; the better one goes on.
+  auto proven = [&]() {
+    return objective - s.LowerBound <= this->Opts.GapTolerance * std::abs(objective);
+  };
+  if (this->Opts.GreedyStart && !proven())
+  {
+    this->Greedy.Solve(problem, this->TryA.data(), this->TryR.data());
+    this->Accept(a, r, this->Evaluate(s.Iterations), objective);
+  }
+  if (n <= this->Opts.SearchLimit && !proven())
   {
     this->ChooseCandidates(a, r, high);
-    this->LocalSearch(a, r, high, objective, s.Iterations);
+    this->LocalSearch(a, r, objective, s.Iterations);
     this->Fill(a, r, high); // the time a search move may have left
     std::copy(a, a + n, this->TryA.begin());
     const double refilled = this->Evaluate(s.Iterations);

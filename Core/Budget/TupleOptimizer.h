@@ -2,6 +2,7 @@
 #ifndef timecritical_TupleOptimizer_h
 #define timecritical_TupleOptimizer_h
 
+#include "GreedyTupleSelector.h"
 #include "TimeCriticalBudgetCoreExport.h"
 #include "TupleProblem.h"
 
@@ -29,7 +30,11 @@ namespace timecritical
  * 2. fill: while some object can move to a less degraded tuple within the
  *    time left, the move with the best degradation saved per second is made
  *    (then 1 again);
- * 3. local search over a few candidates (Options::Candidates: the objects
+ * 3. second start: GreedyTupleSelector's assignment (Funkhouser's greedy
+ *    over discrete levels, which packs the time by value), its resolutions
+ *    re-solved, replaces the answer when better (Options::GreedyStart), so
+ *    the answer is never worse than the greedy's;
+ * 4. local search over a few candidates (Options::Candidates: the objects
  *    whose tuple changes across the jump, then those nearest to changing at
  *    the multiplier; all objects when fewer): any change of one object's
  *    tuple; when it does not fit, the same change with room made by the
@@ -39,8 +44,10 @@ namespace timecritical
  *    of the frame) with a change of one other candidate; resolutions
  *    re-solved each time, a move kept when it lowers the objective. Each
  *    move costs a re-solve, O(n); above Options::SearchLimit objects the
- *    relaxation's gap is a tiny share of the frame and the search is skipped;
- * 4. value order: while an object is dropped and a less valuable one (less
+ *    relaxation's gap is a tiny share of the frame and the search is
+ *    skipped, as it is when the certificate below already proves the
+ *    answer within Options::GapTolerance;
+ * 5. value order: while an object is dropped and a less valuable one (less
  *    to lose when not drawn) whose cheapest tuple costs more is drawn, the
  *    two are swapped (it fits: the dropped one is cheaper). The relaxation
  *    never does that; the search, packing the time, can.
@@ -53,7 +60,7 @@ namespace timecritical
  * lambda tried yields the lower bound sum_i min (D_i + lambda C_i) - lambda
  * Budget on the optimum (weak duality), reported as Solution::LowerBound.
  * The relaxation alone loses up to one object's worth (the discrete jump),
- * which is large only when objects are few; steps 1-3 recover it.
+ * which is large only when objects are few; steps 1-4 recover it.
  *
  * Levels below the coarsest mesh are used only when TupleProblem::NeedsDropping();
  * with dropping off and the cheapest tuples over budget, every object gets
@@ -66,9 +73,11 @@ public:
   struct Options
   {
     int MaxIterations = 200;    ///< multiplier search steps (each one O(n A) pass)
-    std::size_t Candidates = 8; ///< objects of the local search (step 3)
+    std::size_t Candidates = 8; ///< objects of the local search (step 4)
     std::size_t PairLimit = 16; ///< pair moves when Count <= this
-    std::size_t SearchLimit = 2000; ///< local search (step 3) when Count <= this
+    std::size_t SearchLimit = 2000; ///< local search (step 4) when Count <= this
+    bool GreedyStart = true;    ///< step 3: also start from GreedyTupleSelector's assignment
+    double GapTolerance = 1e-7; ///< no step 4 when LowerBound proves the answer this close (relative)
     double Tolerance = 1e-6;    ///< relative width of the final multiplier bracket (step 1 makes r exact)
   };
 
@@ -93,22 +102,22 @@ private:
   bool SolveResolutions(const int* a, double* r, int& iterations);
   /// The best resolution of tuple (i, a) at lambda (closed form).
   double TupleResolution(std::size_t i, std::size_t a, double lambda) const;
-  /// Object i's options: its algorithms, and the box and "not drawn" when dropping.
-  void OptionsOf(std::size_t i, std::vector<int>& out) const;
+  /// An object's options: the algorithms, and the box and "not drawn" when dropping.
+  void OptionsOf(std::vector<int>& out) const;
   /// Resolutions re-solved for TryA (into TryR); the objective when it fits, else +infinity.
   double Evaluate(int& iterations);
   /// Step 2: moves within the time left, best value first.
   void Fill(int* a, double* r, double lambda);
-  /// Step 3 on the candidates; objective updated.
-  void LocalSearch(int* a, double* r, double lambda, double& objective, int& iterations);
+  /// Step 4 on the candidates; objective updated.
+  void LocalSearch(int* a, double* r, double& objective, int& iterations);
   /// TryA = a with object i at option o and, until it can fit, the objects
   /// that lose least per second freed (byLoss: least) moved to their cheapest
   /// algorithm or (when dropping) to the box or to nothing; false when it
   /// cannot.
   bool MakeRoom(const int* a, const double* r, std::size_t i, int o, bool byLoss);
-  /// The candidates of step 3 (Jumpers first, then the smallest regret at lambda).
+  /// The candidates of step 4 (Jumpers first, then the smallest regret at lambda).
   void ChooseCandidates(const int* a, const double* r, double lambda);
-  /// Step 4: swaps until no object is dropped while a less valuable one
+  /// Step 5: swaps until no object is dropped while a less valuable one
   /// whose cheapest tuple costs more is drawn.
   void KeepValueOrder(int* a, double* r, double& objective, int& iterations);
   /// Keeps TryA / TryR as the answer when better.
@@ -116,6 +125,7 @@ private:
   void Cheapest(int* a, double* r) const;
 
   Options Opts;
+  GreedyTupleSelector Greedy;
   const TupleProblem* P = nullptr;
   bool Drop = false;
   double Budget = 0.0; ///< with a rounding allowance

@@ -9,9 +9,8 @@
 
 namespace timecritical
 {
-void TupleOptimizer::OptionsOf(std::size_t i, std::vector<int>& out) const
+void TupleOptimizer::OptionsOf(std::vector<int>& out) const
 {
-  (void)i;
   out.clear();
   for (std::size_t a = 0; a < this->P->AlgorithmCount; ++a)
   {
@@ -67,7 +66,7 @@ void TupleOptimizer::Fill(int* a, double* r, double lambda)
     for (std::size_t i = 0; i < n; ++i)
     {
       const double cost = p.Cost(i, a[i], r[i]), degradation = p.Degradation(i, a[i], r[i]);
-      this->OptionsOf(i, this->Choices);
+      this->OptionsOf(this->Choices);
       for (int o : this->Choices)
       {
         const double ro = o >= 0 ? this->TupleResolution(i, static_cast<std::size_t>(o), lambda) : 0.0;
@@ -129,7 +128,7 @@ void TupleOptimizer::ChooseCandidates(const int* a, const double* r, double lamb
   {
     const double current = p.Degradation(i, a[i], r[i]) + lambda * p.Cost(i, a[i], r[i]);
     double regret = std::numeric_limits<double>::infinity();
-    this->OptionsOf(i, this->Choices);
+    this->OptionsOf(this->Choices);
     for (int o : this->Choices)
     {
       if (o != a[i])
@@ -208,9 +207,8 @@ bool TupleOptimizer::MakeRoom(const int* a, const double* r, std::size_t i, int 
   return needed <= 0.0;
 }
 
-void TupleOptimizer::LocalSearch(int* a, double* r, double lambda, double& objective, int& iterations)
+void TupleOptimizer::LocalSearch(int* a, double* r, double& objective, int& iterations)
 {
-  (void)lambda;
   const std::size_t n = this->P->Count;
   const bool pairs = n <= this->Opts.PairLimit;
   std::vector<int>& first = this->Choices;
@@ -220,7 +218,7 @@ void TupleOptimizer::LocalSearch(int* a, double* r, double lambda, double& objec
     bool improved = false;
     for (std::size_t i : this->Chosen)
     {
-      this->OptionsOf(i, first);
+      this->OptionsOf(first);
       for (int o : first)
       {
         if (o == a[i])
@@ -255,7 +253,7 @@ void TupleOptimizer::LocalSearch(int* a, double* r, double lambda, double& objec
         // Does not fit alone: with another candidate giving time back.
         for (std::size_t j : this->Chosen)
         {
-          this->OptionsOf(j, second);
+          this->OptionsOf(second);
           for (int q : second)
           {
             if (j == i || q == a[j] || a[i] == o)

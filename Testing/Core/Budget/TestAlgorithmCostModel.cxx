@@ -186,6 +186,9 @@ TEST(AlgorithmCostModel, CalibratorConvergesPerAlgorithm)
     EXPECT_NEAR(got.Pixel, want.Pixel, 0.1 * want.Pixel);
     EXPECT_NEAR(got.Vertex, want.Vertex, 0.2 * std::max(want.Vertex, 1e-7));
     EXPECT_NEAR(got.DrawCall, want.DrawCall, 0.5 * want.DrawCall);
+    std::printf("  %s: draw %.3g/%.3g tri %.3g/%.3g vert %.3g/%.3g pix %.3g/%.3g\n",
+      timecritical::GetRenderingAlgorithmName(truth.GetAlgorithm(a)), got.DrawCall, want.DrawCall,
+      got.Triangle, want.Triangle, got.Vertex, want.Vertex, got.Pixel, want.Pixel);
     worst = std::max({ worst, std::abs(got.Triangle / want.Triangle - 1.0),
       std::abs(got.Pixel / want.Pixel - 1.0) });
   }
