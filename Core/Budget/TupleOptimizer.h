@@ -100,6 +100,8 @@ private:
   double Best(std::size_t i, double lambda, int& a, double& r) const;
   /// The resolutions of fixed algorithms a, optimal for them; false when they do not fit.
   bool SolveResolutions(const int* a, double* r, int& iterations);
+  /// Steps 1-5 from the relaxation's choice at lambda.
+  void Repair(int* a, double* r, double lambda, TupleProblem::Solution& s);
   /// The best resolution of tuple (i, a) at lambda (closed form).
   double TupleResolution(std::size_t i, std::size_t a, double lambda) const;
   /// An object's options: the algorithms, and the box and "not drawn" when dropping.

@@ -9,6 +9,55 @@
 
 namespace timecritical
 {
+void TupleOptimizer::Repair(int* a, double* r, double lambda, TupleProblem::Solution& s)
+{
+  const TupleProblem& p = *this->P;
+  const std::size_t n = p.Count;
+  // Step 1: spend the time the jump left on the resolutions of the chosen algorithms.
+  double objective = p.Objective(a, r);
+  std::copy(a, a + n, this->TryA.begin());
+  this->Accept(a, r, this->Evaluate(s.Iterations), objective);
+  // Step 2: fill the time left, then re-solve.
+  this->Fill(a, r, lambda);
+  std::copy(a, a + n, this->TryA.begin());
+  const double filled = this->Evaluate(s.Iterations);
+  objective = p.Objective(a, r);
+  this->Accept(a, r, filled, objective);
+  // Steps 3 and 4: the greedy start, the local search on the candidates.
+  this->Jumpers.clear();
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    if (this->LowA[i] != a[i])
+    {
+      this->Jumpers.push_back(i);
+    }
+  }
+  // Second start: the greedy's assignment (discrete levels, packed by
+  // value), its resolutions re-solved; the better one goes on.
+  auto proven = [&]() {
+    return objective - s.LowerBound <= this->Opts.GapTolerance * std::abs(objective);
+  };
+  if (this->Opts.GreedyStart && !proven())
+  {
+    this->Greedy.Solve(p, this->TryA.data(), this->TryR.data());
+    this->Accept(a, r, this->Evaluate(s.Iterations), objective);
+  }
+  if (n <= this->Opts.SearchLimit && !proven())
+  {
+    this->ChooseCandidates(a, r, lambda);
+    this->LocalSearch(a, r, objective, s.Iterations);
+    this->Fill(a, r, lambda); // the time a search move may have left
+    std::copy(a, a + n, this->TryA.begin());
+    const double refilled = this->Evaluate(s.Iterations);
+    objective = p.Objective(a, r);
+    this->Accept(a, r, refilled, objective);
+  }
+  if (this->Drop)
+  {
+    this->KeepValueOrder(a, r, objective, s.Iterations);
+  }
+}
+
 void TupleOptimizer::OptionsOf(std::vector<int>& out) const
 {
   out.clear();
