@@ -33,7 +33,7 @@ struct CostModelCalibratorOptions
  *   follows the hardware's state and the view mix; a constant ridge towards
  *   the prior keeps R invertible when a feature does not vary (no wind-up);
  * - theta >= 0 exactly: each update solves min theta'R theta - 2 b'theta,
- *   theta >= 0 (Lawson-Hanson, d <= 16, microseconds). Clamping a
+ *   theta >= 0 (Lawson-Hanson, d <= 20, microseconds). Clamping a
  *   covariance-form RLS estimate instead makes the recursion inconsistent;
  * - robustness: frame times have outliers (page faults, scheduling). The
  *   a-priori residual is compared with a robust scale (1.4826 x median of
@@ -56,7 +56,7 @@ struct CostModelCalibratorOptions
 class TIMECRITICALBUDGETCORE_EXPORT CostModelCalibrator
 {
 public:
-  static constexpr std::size_t MaxFeatures = 16;
+  static constexpr std::size_t MaxFeatures = 20; ///< 17 for four algorithms (AlgorithmCostModel)
   static constexpr std::size_t MaxWindow = 31;
 
   using Options = CostModelCalibratorOptions;

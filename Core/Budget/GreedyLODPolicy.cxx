@@ -127,6 +127,7 @@ void GreedyLODPolicy::SetLevels(const double* levels, std::size_t count)
   this->Levels.push_back(1.0);
   std::sort(this->Levels.begin(), this->Levels.end());
   this->Levels.erase(std::unique(this->Levels.begin(), this->Levels.end()), this->Levels.end());
+  this->Tuples.SetLevels(this->Levels.data(), this->Levels.size());
 }
 
 void GreedyLODPolicy::SetHysteresis(double hysteresis)

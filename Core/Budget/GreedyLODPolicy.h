@@ -2,6 +2,7 @@
 #ifndef timecritical_GreedyLODPolicy_h
 #define timecritical_GreedyLODPolicy_h
 
+#include "GreedyTupleSelector.h"
 #include "ResolutionPolicy.h"
 
 #include <cstddef>
@@ -32,6 +33,11 @@ namespace timecritical
  * Levels default to the paper's six LODs 100, 50, 25, 12, 6, 3 %; below rmin
  * a level costs as much as rmin (eq. 3) and is not used. Indexed heaps make
  * each move O(log n); buffers are reused across frames.
+ *
+ * SelectTuples() chooses (rendering algorithm, level) tuples and the levels
+ * below the coarsest mesh instead, over the same levels, with
+ * GreedyTupleSelector (Funkhouser & Séquin's greedy by benefit / cost, with
+ * its bound of half the optimum; no hysteresis there yet).
  */
 class TIMECRITICALBUDGETCORE_EXPORT GreedyLODPolicy : public ResolutionPolicy
 {
@@ -46,6 +52,12 @@ public:
   /// In [0, 1): 0 disables hysteresis.
   void SetHysteresis(double hysteresis);
   double GetHysteresis() const { return this->Hysteresis; }
+
+  /// Tuples for the frame (GreedyTupleSelector::Solve()); throws std::invalid_argument on bad input.
+  TupleProblem::Solution SelectTuples(const TupleProblem& problem, int* algorithms, double* r)
+  {
+    return this->Tuples.Solve(problem, algorithms, r);
+  }
 
 protected:
   void Choose(const PolicyInput& input, double* r, PolicyResult& result) override;
@@ -87,6 +99,7 @@ private:
   std::vector<int> Level, MinLevel, PreviousLevel;
   std::vector<double> Lo, C, T;
   Heap Ups, Downs;
+  GreedyTupleSelector Tuples; // over the same Levels
 };
 }
 

@@ -7,10 +7,13 @@
 #include "ActiveSetPolicy.h"
 #include "GreedyLODPolicy.h"
 #include "StaticThresholdPolicy.h"
+#include "TupleProblem.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 namespace
 {
@@ -96,5 +99,36 @@ TEST(ActiveSetPolicy, InfeasibleIsFlagged)
   EXPECT_TRUE(result.OverBudget);
   EXPECT_FALSE(result.Converged);
   EXPECT_TRUE(policy.GetLastResult().Infeasible);
+}
+
+TEST(ActiveSetPolicy, TuplesWithOneAlgorithmAreTodaysChoice)
+{
+  // One algorithm, no dropping: SelectTuples() solves the problem Select() does.
+  for (double alpha : { 1.0, 2.0, -0.5 })
+  {
+    PolicyScene scene(300, alpha, 23);
+    ActiveSetPolicy policy;
+    std::vector<double> r(300), tr(300);
+    const auto result = policy.Select(scene.Input(), r.data());
+    timecritical::TupleProblem tuples;
+    tuples.Count = 300;
+    tuples.AlgorithmCount = 1;
+    tuples.Alpha = &scene.Problem.Alpha;
+    tuples.Weight = scene.Problem.Weight.data();
+    tuples.MaxTime = scene.Problem.MaxTime.data();
+    tuples.MinResolution = scene.Problem.MinResolution.data();
+    tuples.Budget = scene.Target - scene.FixedTime;
+    std::vector<int> a(300, -5);
+    const auto s = policy.SelectTuples(tuples, a.data(), tr.data());
+    SCOPED_TRACE("alpha " + std::to_string(alpha));
+    EXPECT_EQ(std::count(a.begin(), a.end(), 0), 300);
+    EXPECT_EQ(s.Dropped + s.Boxed, 0u);
+    EXPECT_NEAR(s.Objective, result.Objective, 1e-8 * std::abs(result.Objective));
+    EXPECT_LE(s.Cost, tuples.Budget * (1.0 + 1e-9));
+    for (std::size_t i = 0; i < 300; ++i)
+    {
+      EXPECT_NEAR(tr[i], r[i], 1e-5) << i;
+    }
+  }
 }
 }

@@ -1,0 +1,148 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Tests of TupleProblem: degradation and cost of tuples and of the levels
+// below the coarsest mesh, when dropping is in play, summaries, and the
+// validation of bad input (each case a clear std::invalid_argument).
+#include "TupleProblem.h"
+
+#include "ResolutionProblem.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace
+{
+using timecritical::TupleProblem;
+
+/// Two objects, two algorithms (alpha 1 and 2).
+struct Small
+{
+  std::vector<double> Alpha = { 1.0, 2.0 };
+  std::vector<double> Weight = { 4.0, 2.0, 1.0, 0.0 };
+  std::vector<double> Offset = { 0.0, 0.5, 0.0, 0.25 };
+  std::vector<double> MaxTime = { 0.02, 0.01, 0.03, 0.0 };
+  std::vector<double> FixedCost = { 0.0, 0.005, 0.001, 0.002 };
+  std::vector<double> Lo = { 0.1, 0.2, 0.05, 0.5 };
+  std::vector<double> Hi = { 1.0, 0.5, 1.0, 1.0 };
+  std::vector<double> BoxCost = { 1e-4, 2e-4 };
+  std::vector<double> BoxDegradation = { 9.0, 8.0 };
+  std::vector<double> DropDegradation = { 10.0, 9.0 };
+
+  TupleProblem View(double budget = 0.05, bool drop = true) const
+  {
+    TupleProblem p;
+    p.Count = 2;
+    p.AlgorithmCount = 2;
+    p.Alpha = this->Alpha.data();
+    p.Weight = this->Weight.data();
+    p.Offset = this->Offset.data();
+    p.MaxTime = this->MaxTime.data();
+    p.FixedCost = this->FixedCost.data();
+    p.MinResolution = this->Lo.data();
+    p.MaxResolution = this->Hi.data();
+    p.BoxCost = this->BoxCost.data();
+    p.BoxDegradation = this->BoxDegradation.data();
+    p.DropDegradation = this->DropDegradation.data();
+    p.AllowDrop = drop;
+    p.Budget = budget;
+    return p;
+  }
+};
+
+TEST(TupleProblem, DegradationAndCostOfTuples)
+{
+  const Small s;
+  const TupleProblem p = s.View();
+  EXPECT_NO_THROW(p.Validate());
+  // Object 0, algorithm 0: 4 / r, cost 0.02 r.
+  EXPECT_DOUBLE_EQ(p.Degradation(0, 0, 0.5), 8.0);
+  EXPECT_DOUBLE_EQ(p.Cost(0, 0, 0.5), 0.01);
+  // Below lo: clamped up (cost and degradation of lo).
+  EXPECT_DOUBLE_EQ(p.Degradation(0, 0, 0.01), 40.0);
+  EXPECT_DOUBLE_EQ(p.Cost(0, 0, 0.01), 0.002);
+  // Object 0, algorithm 1: 2 / 2 r^-2 + 0.5, flat above hi = 0.5; cost 0.005 + 0.01 r.
+  EXPECT_DOUBLE_EQ(p.Degradation(0, 1, 0.25), 16.5);
+  EXPECT_DOUBLE_EQ(p.Degradation(0, 1, 1.0), 4.5);
+  EXPECT_DOUBLE_EQ(p.Hi(0, 1), 0.5);
+  EXPECT_DOUBLE_EQ(p.Cost(0, 1, 1.0), 0.015);
+  // Box and not drawn.
+  EXPECT_DOUBLE_EQ(p.Degradation(1, TupleProblem::BoundingBox, 0.0), 8.0);
+  EXPECT_DOUBLE_EQ(p.Cost(1, TupleProblem::BoundingBox, 0.0), 2e-4);
+  EXPECT_DOUBLE_EQ(p.Degradation(1, TupleProblem::NotDrawn, 0.0), 9.0);
+  EXPECT_DOUBLE_EQ(p.Cost(1, TupleProblem::NotDrawn, 0.0), 0.0);
+  // Object 1, algorithm 1: T = 0 pins it at lo: cost F, degradation the offset.
+  EXPECT_DOUBLE_EQ(p.Cost(1, 1, 1.0), 0.002);
+  EXPECT_DOUBLE_EQ(p.Degradation(1, 1, 1.0), 0.25);
+}
+
+TEST(TupleProblem, CheapestDroppingAndSummary)
+{
+  const Small s;
+  // Cheapest: object 0 algorithm 0 (0.002 < 0.007), object 1 algorithm 1 (0.002 < 0.0025).
+  TupleProblem p = s.View(0.0035);
+  EXPECT_EQ(p.CheapestAlgorithm(0), 0);
+  EXPECT_EQ(p.CheapestAlgorithm(1), 1);
+  EXPECT_TRUE(p.NeedsDropping());
+  p.Budget = 0.004;
+  EXPECT_FALSE(p.NeedsDropping());
+  p.Budget = 0.0;
+  p.AllowDrop = false;
+  EXPECT_FALSE(p.NeedsDropping()); // still frames never drop
+  const int a[2] = { TupleProblem::NotDrawn, 0 };
+  const double r[2] = { 0.0, 0.5 };
+  TupleProblem::Solution sum;
+  p.Summarize(a, r, sum);
+  EXPECT_EQ(sum.Dropped, 1u);
+  EXPECT_EQ(sum.Boxed, 0u);
+  EXPECT_DOUBLE_EQ(sum.Objective, 10.0 + 2.0);
+  EXPECT_DOUBLE_EQ(sum.Cost, 0.001 + 0.015);
+}
+
+TEST(TupleProblem, BadInputThrowsClearly)
+{
+  auto expectThrow = [](const TupleProblem& p, const char* words) {
+    try
+    {
+      p.Validate();
+      ADD_FAILURE() << "no exception for " << words;
+    }
+    catch (const std::invalid_argument& e)
+    {
+      EXPECT_NE(std::string(e.what()).find(words), std::string::npos) << e.what();
+    }
+  };
+  Small s;
+  TupleProblem p = s.View();
+  p.AlgorithmCount = 0;
+  expectThrow(p, "algorithms is empty");
+  s.MaxTime[1] = -0.01;
+  expectThrow(s.View(), "MaxTime[1]");
+  s.MaxTime[1] = 0.01;
+  s.Weight[2] = std::numeric_limits<double>::quiet_NaN();
+  expectThrow(s.View(), "Weight[2]");
+  s.Weight[2] = 1.0;
+  s.Alpha[1] = -1.0;
+  expectThrow(s.View(), "Alpha[1]");
+  s.Alpha[1] = 2.0;
+  s.Lo[0] = 0.0;
+  expectThrow(s.View(), "MinResolution[0]");
+  s.Lo[0] = 0.1;
+  s.BoxCost[1] = std::numeric_limits<double>::infinity();
+  expectThrow(s.View(), "BoxCost[1]");
+  s.BoxCost[1] = 2e-4;
+  expectThrow(s.View(std::numeric_limits<double>::quiet_NaN()), "budget is NaN");
+  p = s.View();
+  p.DropDegradation = nullptr;
+  expectThrow(p, "DropDegradation");
+  p = s.View();
+  p.Weight = nullptr;
+  expectThrow(p, "required");
+  EXPECT_NO_THROW(s.View().Validate());
+  p.Count = 0; // an empty frame is valid whatever the arrays
+  EXPECT_NO_THROW(p.Validate());
+}
+}
