@@ -107,6 +107,12 @@ void vtkMultiresolutionPolyDataMapper::ReleaseGraphicsResources(vtkWindow*)
   {
     this->EdgeBuffer->ReleaseGraphicsResources();
   }
+  if (in.PickTexture)
+  {
+    in.PickTexture->ReleaseGraphicsResources(window);
+    in.PickBuffer->ReleaseGraphicsResources();
+    in.PickFlagsStale = true;
+  }
   this->TimerQuery->ReleaseGraphicsResources();
   window->PopContext();
   this->VBOBuildState.Clear();
@@ -227,10 +233,12 @@ void vtkMultiresolutionPolyDataMapper::RenderPiece(vtkRenderer* ren, vtkActor* a
   }
   this->UpdateCameraShiftScale(ren, act);
   this->PrepareBlockColors(act);
+  this->ActivatePickability(ren);
   this->RenderPieceStart(ren, act);
   this->UploadBlockColors();
   this->RenderPieceDraw(ren, act);
   this->RenderPieceFinish(ren, act);
+  this->DeactivatePickability();
 
   // Draw calls made by RenderPieceDraw: one per non-empty primitive type.
   const bool edges = act->GetProperty()->GetEdgeVisibility() &&

@@ -76,7 +76,12 @@
  * opaque ones from the translucent pass.
  * Attributes are render state: a change rewrites the colors of the blocks
  * that changed (a visibility change their index slots) and nothing else.
- * Block pickability is not applied.
+ * An unpickable block (pickability, inherited like the others) is drawn but
+ * never selected: hardware selection passes do not draw it (its vertices are
+ * dropped by the vertex shader through a flag per vertex), so that, as with
+ * vtkCompositePolyDataMapper2, what lies behind it can be selected through
+ * it (cells; a point selection's depth comes from a normal render, which
+ * draws it).
  *
  * Hardware selection (vtkHardwareSelector, ParaView's area selection)
  * reports each leaf's flat index (composite input) and the leaf's own cell
@@ -116,6 +121,7 @@
 
 class vtkCompositeDataDisplayAttributes;
 class vtkHierarchyBuildQueue;
+class vtkShaderProgram;
 class vtkStateStorage;
 
 class TIMECRITICALRENDERING_EXPORT vtkMultiresolutionPolyDataMapper : public vtkOpenGLPolyDataMapper
@@ -192,7 +198,8 @@ public:
 
   ///@{
   /**
-   * Block attributes of composite input (visibility, color, opacity), keyed
+   * Block attributes of composite input (visibility, pickability, color,
+   * opacity), keyed
    * by the input's data objects as in vtkCompositePolyDataMapper2; none by
    * default. Changes apply at the next render without rebuilding buffers.
    * The flat-index setters create the attributes when there are none and
@@ -203,7 +210,9 @@ public:
   void SetBlockVisibility(unsigned int flatIndex, bool visible);
   void SetBlockColor(unsigned int flatIndex, double r, double g, double b);
   void SetBlockOpacity(unsigned int flatIndex, double opacity);
+  void SetBlockPickability(unsigned int flatIndex, bool pickable);
   bool GetObjectVisibility(vtkIdType i) const; ///< false: a hidden block
+  bool GetObjectPickability(vtkIdType i) const; ///< false: never selected
   ///@}
 
   /// Bytes of vertex colors rewritten in place by the last render (resolution map, block colors).
@@ -440,10 +449,15 @@ protected:
     vtkRenderer* ren, vtkActor* act, vtkCellArray* prims[4], int representation) override;
 
   ///@{
-  /// Block opacities: the vertex shader keeps each object in its pass (Blocks.cxx).
+  /**
+   * Block opacities: the vertex shader keeps each object in its pass; block
+   * pickability: selection passes drop unpickable objects (Blocks.cxx,
+   * Selection.cxx).
+   */
   void ReplaceShaderValues(
     std::map<vtkShader::Type, vtkShader*> shaders, vtkRenderer* ren, vtkActor* act) override;
   void SetMapperShaderParameters(vtkOpenGLHelper& cellBO, vtkRenderer* ren, vtkActor* act) override;
+  bool GetNeedToRebuildShaders(vtkOpenGLHelper& cellBO, vtkRenderer* ren, vtkActor* act) override;
   ///@}
 
   ///@{
@@ -538,6 +552,12 @@ private:
   /// Drops the superclass's scalar texture (colours given per vertex or cell instead).
   void ReleaseColorTexture();
   void UploadBlockColors();
+  // Block pickability in selection passes (Selection.cxx).
+  void UpdatePickability(bool stale);
+  void ReplacePickabilityShaderValues(vtkShader* vertex, vtkRenderer* ren);
+  void SetPickabilityShaderParameters(vtkShaderProgram* program);
+  void ActivatePickability(vtkRenderer* ren);
+  void DeactivatePickability();
 
   struct Internals;
   std::unique_ptr<Internals> Internal;

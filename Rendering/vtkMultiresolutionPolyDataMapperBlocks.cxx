@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // vtkMultiresolutionPolyDataMapper: block attributes of composite input
 // (vtkCompositeDataDisplayAttributes). Each object gets its block's
-// visibility, color and opacity, inherited from parent blocks as in
-// vtkCompositePolyDataMapper2; hidden objects are culled (their slots), and
+// visibility, pickability, color and opacity, inherited from parent blocks
+// as in vtkCompositePolyDataMapper2; hidden objects are culled (their
+// slots), unpickable ones left out of selection passes (Selection.cxx), and
 // colors and opacities are drawn as one RGBA per vertex (or per cell), the
 // block colors, whose ranges are rewritten in place when attributes change.
 #include "vtkMultiresolutionPolyDataMapperInternals.h"
@@ -30,6 +31,7 @@ namespace
 struct BlockState
 {
   bool Visible = true;
+  bool Pickable = true;
   bool HasColor = false;
   bool HasOpacity = false;
   double Color[3] = { 1.0, 1.0, 1.0 };
@@ -48,6 +50,10 @@ BlockState Inherit(const BlockState& parent, vtkCompositeDataDisplayAttributes* 
   if (attributes->HasBlockVisibility(node))
   {
     state.Visible = attributes->GetBlockVisibility(node);
+  }
+  if (attributes->HasBlockPickability(node))
+  {
+    state.Pickable = attributes->GetBlockPickability(node);
   }
   if (attributes->HasBlockColor(node))
   {
@@ -87,6 +93,7 @@ struct vtkMultiresolutionPolyDataMapper::Internals::BlockWalk
   size_t Cursor = 0;
   unsigned int FlatIndex = 0;
   bool VisibilityChanged = false;
+  bool PickabilityChanged = false;
   std::vector<char>* ColorChanged = nullptr; // per object
 
   void Visit(vtkDataObject* node, const BlockState& parent)
@@ -133,6 +140,11 @@ struct vtkMultiresolutionPolyDataMapper::Internals::BlockWalk
       object.Visible = state.Visible;
       this->VisibilityChanged = true;
       (*this->ColorChanged)[i] = 1; // hidden vertices, lines and strips: alpha 0
+    }
+    if (object.Pickable != state.Pickable)
+    {
+      object.Pickable = state.Pickable;
+      this->PickabilityChanged = true;
     }
     if (ColorsDiffer(object, state))
     {
@@ -214,6 +226,15 @@ void vtkMultiresolutionPolyDataMapper::SetBlockColor(
   }
 }
 
+void vtkMultiresolutionPolyDataMapper::SetBlockPickability(unsigned int flatIndex, bool pickable)
+{
+  vtkDataObject* block = nullptr;
+  if (auto* attributes = AttributesFor(this, flatIndex, block))
+  {
+    attributes->SetBlockPickability(block, pickable);
+  }
+}
+
 void vtkMultiresolutionPolyDataMapper::SetBlockOpacity(unsigned int flatIndex, double opacity)
 {
   if (!(opacity >= 0.0 && opacity <= 1.0))
@@ -232,6 +253,11 @@ void vtkMultiresolutionPolyDataMapper::SetBlockOpacity(unsigned int flatIndex, d
 bool vtkMultiresolutionPolyDataMapper::GetObjectVisibility(vtkIdType i) const
 {
   return this->IsValidObject(i) && this->Internal->Objects[i].Visible;
+}
+
+bool vtkMultiresolutionPolyDataMapper::GetObjectPickability(vtkIdType i) const
+{
+  return this->IsValidObject(i) && this->Internal->Objects[i].Pickable;
 }
 
 //------------------------------------------------------------------------------
@@ -261,6 +287,7 @@ void vtkMultiresolutionPolyDataMapper::UpdateBlockAttributes()
   {
     ++in.ResolutionVersion; // hidden objects' slots are culled, shown ones drawn again
   }
+  this->UpdatePickability(walk.PickabilityChanged || reread);
 
   bool mode = false;
   in.AnyTranslucentBlock = in.AnyOpaqueBlock = false;
@@ -482,6 +509,7 @@ void vtkMultiresolutionPolyDataMapper::ReplaceShaderValues(
     fragment->SetSource(source);
   }
   this->Superclass::ReplaceShaderValues(shaders, ren, act);
+  this->ReplacePickabilityShaderValues(shaders[vtkShader::Vertex], ren);
   // Point colors: by the vertex's block alpha, in the vertex shader, which
   // drops a primitive before rasterization by moving all its vertices
   // outside the clip volume (a block's vertices share its opacity class); a
@@ -515,12 +543,14 @@ void vtkMultiresolutionPolyDataMapper::SetMapperShaderParameters(
 {
   this->Superclass::SetMapperShaderParameters(cellBO, ren, act);
   vtkShaderProgram* program = cellBO.Program;
+  this->SetPickabilityShaderParameters(program);
   if (!program || !program->IsUniformUsed("blockPass"))
   {
     return;
   }
   // Split by pass only when the actor is drawn in both (opaque blocks beside
-  // translucent ones); selection passes draw every shown block.
+  // translucent ones); selection passes draw every shown block (but the
+  // unpickable ones, dropped through pickableVertices).
   int pass = 2;
   if (!ren->GetSelector() && act->HasOpaqueGeometry() && act->HasTranslucentPolygonalGeometry())
   {

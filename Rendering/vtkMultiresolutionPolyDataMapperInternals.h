@@ -22,7 +22,9 @@
 
 #include "vtkCompositeDataDisplayAttributes.h"
 #include "vtkNew.h"
+#include "vtkOpenGLBufferObject.h"
 #include "vtkProperty.h" // for VTK_SURFACE
+#include "vtkTextureObject.h"
 #include "vtkUnsignedCharArray.h"
 #include "vtkOpenGLPolyDataMapper.h"
 #include "vtkSmartPointer.h"
@@ -168,8 +170,10 @@ struct vtkMultiresolutionPolyDataMapper::Internals
     Content Written;        // what the slot holds
     bool Rewritten = false; // by the last render
     // Block attributes (vtkCompositeDataDisplayAttributes, inherited from
-    // parent blocks; Blocks.cxx). An invisible object is culled.
+    // parent blocks; Blocks.cxx). An invisible object is culled; an
+    // unpickable one is left out of selection passes (Selection.cxx).
     bool Visible = true;
+    bool Pickable = true;
     bool HasBlockColor = false;
     bool HasBlockOpacity = false;
     double BlockColor[3] = { 1.0, 1.0, 1.0 };
@@ -263,6 +267,17 @@ struct vtkMultiresolutionPolyDataMapper::Internals
   vtkSmartPointer<vtkUnsignedCharArray> BaseColors;
   vtkMTimeType BlockBaseTime = 0;
   double BlockPropertyColor[4] = { -1.0, -1.0, -1.0, -1.0 };
+  // Block pickability (Selection.cxx): while some object is unpickable,
+  // selection passes read a flag per vertex (0 for the vertices of
+  // unpickable objects) from a texture buffer at gl_VertexID and drop
+  // those vertices in the vertex shader, so that an unpickable block is not
+  // drawn by selection passes, as in vtkCompositePolyDataMapper2.
+  bool AnyUnpickable = false;
+  bool PickFlagsStale = true;         // rewrite and upload the flags before the next selection
+  vtkTimeStamp PickabilityModeTime;   // AnyUnpickable changed: selection shaders rebuilt
+  vtkSmartPointer<vtkTextureObject> PickTexture;
+  vtkSmartPointer<vtkOpenGLBufferObject> PickBuffer;
+  bool PickTextureActive = false;
   bool ColorsAreResolutionMap = false; // this->Colors is a resolution map
   // The leaves' mapped scalars (MapLeafScalars): when, and for what.
   vtkTimeStamp ColorsTime;

@@ -8,7 +8,9 @@
 // Emit wrote there (the cell textures' mapping), a vertex the object whose
 // vertex range holds it; the composite pass, processed again in the
 // selector's second iteration when the cell (or point) ids of the first are
-// known, becomes the object's flat index.
+// known, becomes the object's flat index. Unpickable blocks are not drawn by
+// the selection passes: the vertex shader drops their vertices, flagged 0 in
+// a texture buffer of one byte per vertex.
 #include "vtkMultiresolutionPolyDataMapperInternals.h"
 
 #include "vtkActor.h"
@@ -18,13 +20,17 @@
 #include "vtkHardwareSelector.h"
 #include "vtkIdTypeArray.h"
 #include "vtkOpenGLCellToVTKCellMap.h"
+#include "vtkOpenGLHelper.h"
+#include "vtkOpenGLRenderWindow.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
 #include "vtkProperty.h"
 #include "vtkRenderer.h"
+#include "vtkShaderProgram.h"
 #include "vtkUnsignedIntArray.h"
 
 #include <algorithm>
+#include <cstddef>
 #include <iterator>
 #include <map>
 
@@ -517,5 +523,110 @@ void vtkMultiresolutionPolyDataMapper::WriteProcessIds(
     {
       WritePixelId(out, pos, values->GetValue(vertex - object->VertexOffset) + 1, 0);
     }
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkMultiresolutionPolyDataMapper::UpdatePickability(bool stale)
+{
+  // After the block walk: whether selection passes must drop some objects.
+  Internals& in = *this->Internal;
+  in.PickFlagsStale = in.PickFlagsStale || stale;
+  const bool any = std::any_of(in.Objects.begin(), in.Objects.end(),
+    [](const Internals::Object& object) { return !object.Pickable; });
+  if (any != in.AnyUnpickable)
+  {
+    in.AnyUnpickable = any;
+    in.PickabilityModeTime.Modified(); // selection shaders gain or lose the test
+  }
+}
+
+bool vtkMultiresolutionPolyDataMapper::GetNeedToRebuildShaders(
+  vtkOpenGLHelper& cellBO, vtkRenderer* ren, vtkActor* act)
+{
+  // A change of selection pass rebuilds the shaders anyway (the
+  // superclass's selection state); so does a change of whether some object
+  // is unpickable, should it come between two renders of the same pass.
+  return this->Superclass::GetNeedToRebuildShaders(cellBO, ren, act) ||
+    (ren->GetSelector() && cellBO.ShaderSourceTime < this->Internal->PickabilityModeTime);
+}
+
+void vtkMultiresolutionPolyDataMapper::ReplacePickabilityShaderValues(
+  vtkShader* vertex, vtkRenderer* ren)
+{
+  // Selection passes only: a vertex flagged 0 is moved outside the clip
+  // volume, so that no primitive of an unpickable object is rasterized
+  // (gl_VertexID is the vertex's index in the merged vertex buffer).
+  if (!vertex || !ren->GetSelector() || !this->Internal->AnyUnpickable)
+  {
+    return;
+  }
+  std::string source = vertex->GetSource();
+  vtkShaderProgram::Substitute(
+    source, "//VTK::Clip::Dec", "//VTK::Clip::Dec\nuniform samplerBuffer pickableVertices;", false);
+  vtkShaderProgram::Substitute(source, "//VTK::CustomEnd::Impl",
+    "if (texelFetch(pickableVertices, gl_VertexID).r < 0.5)\n"
+    "  {\n"
+    "  gl_Position = vec4(2.0, 2.0, 2.0, 1.0);\n"
+    "  }\n"
+    "//VTK::CustomEnd::Impl",
+    false);
+  vertex->SetSource(source);
+}
+
+void vtkMultiresolutionPolyDataMapper::SetPickabilityShaderParameters(vtkShaderProgram* program)
+{
+  const Internals& in = *this->Internal;
+  if (program && in.PickTextureActive && program->IsUniformUsed("pickableVertices"))
+  {
+    program->SetUniformi("pickableVertices", in.PickTexture->GetTextureUnit());
+  }
+}
+
+void vtkMultiresolutionPolyDataMapper::ActivatePickability(vtkRenderer* ren)
+{
+  // Before a selection pass draws: the flags of the current objects on the
+  // GPU (written again only when pickability or the objects changed).
+  Internals& in = *this->Internal;
+  if (!ren->GetSelector() || !in.AnyUnpickable)
+  {
+    return;
+  }
+  if (!in.PickTexture)
+  {
+    in.PickTexture = vtkSmartPointer<vtkTextureObject>::New();
+    in.PickBuffer = vtkSmartPointer<vtkOpenGLBufferObject>::New();
+    in.PickBuffer->SetType(vtkOpenGLBufferObject::TextureBuffer);
+    in.PickFlagsStale = true;
+  }
+  if (in.PickFlagsStale)
+  {
+    std::vector<unsigned char> flags(
+      static_cast<size_t>(std::max<vtkIdType>(in.TotalVertices, 1)), 255);
+    for (const auto& object : in.Objects)
+    {
+      if (!object.Pickable)
+      {
+        std::fill_n(flags.begin() + static_cast<std::ptrdiff_t>(object.VertexOffset),
+          static_cast<size_t>(object.NumberOfVertices), static_cast<unsigned char>(0));
+      }
+    }
+    in.PickTexture->SetContext(static_cast<vtkOpenGLRenderWindow*>(ren->GetRenderWindow()));
+    in.PickBuffer->Upload(flags, vtkOpenGLBufferObject::TextureBuffer);
+    in.PickTexture->CreateTextureBuffer(
+      static_cast<unsigned int>(flags.size()), 1, VTK_UNSIGNED_CHAR, in.PickBuffer);
+    in.PickFlagsStale = false;
+  }
+  in.PickTexture->Activate();
+  in.PickTextureActive = true;
+}
+
+void vtkMultiresolutionPolyDataMapper::DeactivatePickability()
+{
+  Internals& in = *this->Internal;
+  if (in.PickTextureActive)
+  {
+    in.PickTexture->Deactivate();
+    in.PickTextureActive = false;
   }
 }

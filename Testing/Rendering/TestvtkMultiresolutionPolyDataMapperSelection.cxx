@@ -1,7 +1,11 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // vtkMultiresolutionPolyDataMapper hardware selection: leaf cells and points
-// at any resolution, fronts, non-TOM leaves, id arrays and selection display.
+// at any resolution, fronts, non-TOM leaves, id arrays, selection display and
+// unpickable blocks.
 #include "MultiresolutionMapperTestSupport.h"
+
+#include "vtkCompositeDataDisplayAttributes.h"
+#include "vtkCompositePolyDataMapper2.h"
 
 //------------------------------------------------------------------------------
 // Hardware selection (vtkHardwareSelector on the renderer, as ParaView selects):
@@ -404,4 +408,143 @@ TEST(MultiresolutionMapperSelection, SelectionDisplayOutlinesTheLeafCells)
   EXPECT_EQ(outside, 0);
   // A node of no leaf's flat index outlines nothing.
   EXPECT_EQ(select(12345), plain);
+}
+
+//------------------------------------------------------------------------------
+// Block pickability: an unpickable block is drawn but never selected, and the
+// block behind it is selected through it, as with vtkCompositePolyDataMapper2.
+namespace
+{
+// Flat indices: root 0, A 1, inner 2, B 3, C 4. A at the left; B at the
+// right in front of C, which is larger and farther from the camera (+z).
+struct PickScene
+{
+  PickScene()
+  {
+    this->Leaves = { MakeTOM(0.45, 40, 30, -1.0, 0, 0), MakeTOM(0.4, 40, 30, 1.0, 0, 1.0),
+      MakeTOM(0.7, 44, 32, 1.0, 0, -1.0) };
+    this->Inner->SetNumberOfBlocks(2);
+    this->Inner->SetBlock(0, this->Leaves[1]);
+    this->Inner->SetBlock(1, this->Leaves[2]);
+    this->Input->SetNumberOfBlocks(2);
+    this->Input->SetBlock(0, this->Leaves[0]);
+    this->Input->SetBlock(1, this->Inner);
+  }
+  std::vector<vtkSmartPointer<vtkPolyData>> Leaves;
+  vtkNew<vtkMultiBlockDataSet> Inner;
+  vtkNew<vtkMultiBlockDataSet> Input;
+};
+
+// Flat indices selected in the whole window, or in a 5-pixel square around
+// the projection of `world`.
+std::set<unsigned int> SelectedBlocks(Scene& scene, int association, const double* world = nullptr)
+{
+  vtkNew<vtkHardwareSelector> selector;
+  selector->SetRenderer(scene.Renderer);
+  selector->SetFieldAssociation(association);
+  const int* size = scene.Window->GetSize();
+  unsigned int area[4] = { 0, 0, static_cast<unsigned int>(size[0] - 1),
+    static_cast<unsigned int>(size[1] - 1) };
+  if (world)
+  {
+    scene.Renderer->SetWorldPoint(world[0], world[1], world[2], 1.0);
+    scene.Renderer->WorldToDisplay();
+    const double* display = scene.Renderer->GetDisplayPoint();
+    const auto x = static_cast<unsigned int>(std::lround(display[0]));
+    const auto y = static_cast<unsigned int>(std::lround(display[1]));
+    area[0] = x - 2;
+    area[1] = y - 2;
+    area[2] = x + 2;
+    area[3] = y + 2;
+  }
+  selector->SetArea(area);
+  vtkSmartPointer<vtkSelection> selection;
+  selection.TakeReference(selector->Select());
+  std::set<unsigned int> flats;
+  for (unsigned int n = 0; selection && n < selection->GetNumberOfNodes(); ++n)
+  {
+    vtkSelectionNode* node = selection->GetNode(n);
+    auto ids = vtkIdTypeArray::SafeDownCast(node->GetSelectionList());
+    if (ids && ids->GetNumberOfTuples() > 0)
+    {
+      flats.insert(static_cast<unsigned int>(
+        node->GetProperties()->Get(vtkSelectionNode::COMPOSITE_INDEX())));
+    }
+  }
+  return flats;
+}
+
+using Flats = std::set<unsigned int>;
+}
+
+TEST(MultiresolutionMapperSelection, UnpickableBlocksAreNeverSelected)
+{
+  PickScene data;
+  vtkNew<vtkCompositeDataDisplayAttributes> attributes;
+  vtkNew<vtkMultiresolutionPolyDataMapper> mapper;
+  mapper->SetInputDataObject(data.Input);
+  mapper->SetCompositeDataDisplayAttributes(attributes);
+  Scene scene(mapper);
+  scene.SetCamera(0, 0, 7);
+  scene.Render();
+  vtkNew<vtkCompositePolyDataMapper2> composite;
+  composite->SetInputDataObject(data.Input);
+  composite->SetCompositeDataDisplayAttributes(attributes);
+  Scene reference(composite);
+  reference.SetCamera(0, 0, 7);
+  reference.Render();
+  const double centerB[3] = { 1.0, 0.0, 1.4 }; // B's front, in front of C
+  const int cells = vtkDataObject::FIELD_ASSOCIATION_CELLS;
+  const int points = vtkDataObject::FIELD_ASSOCIATION_POINTS;
+
+  // Everything pickable: B hides C at its centre.
+  EXPECT_EQ(SelectedBlocks(scene, cells), Flats({ 1, 3, 4 }));
+  EXPECT_EQ(SelectedBlocks(scene, cells, centerB), Flats({ 3 }));
+  EXPECT_EQ(SelectedBlocks(reference, cells, centerB), Flats({ 3 }));
+  scene.Render();
+  const int drawn = scene.CountForeground();
+
+  // B unpickable: never selected, C selected through it; B still drawn.
+  mapper->SetBlockPickability(3, false);
+  EXPECT_EQ(attributes->GetBlockPickability(data.Leaves[1]), false);
+  scene.Render();
+  EXPECT_EQ(scene.CountForeground(), drawn);
+  EXPECT_FALSE(mapper->GetObjectPickability(1));
+  EXPECT_TRUE(mapper->GetObjectPickability(2));
+  EXPECT_TRUE(mapper->GetObjectVisibility(1));
+  EXPECT_EQ(SelectedBlocks(scene, cells), Flats({ 1, 4 }));
+  EXPECT_EQ(SelectedBlocks(scene, cells, centerB), Flats({ 4 }));
+  EXPECT_EQ(SelectedBlocks(reference, cells), Flats({ 1, 4 }));
+  EXPECT_EQ(SelectedBlocks(reference, cells, centerB), Flats({ 4 }));
+  EXPECT_EQ(SelectedBlocks(scene, points), SelectedBlocks(reference, points));
+  EXPECT_EQ(SelectedBlocks(scene, points).count(3), 0u);
+  scene.Actor->GetProperty()->SetRepresentationToWireframe();
+  EXPECT_EQ(SelectedBlocks(scene, cells), Flats({ 1, 4 }));
+  scene.Actor->GetProperty()->SetRepresentationToSurface();
+
+  // The parent's pickability passes to its children; a child's own wins.
+  attributes->RemoveBlockPickabilities();
+  attributes->SetBlockPickability(data.Inner, false);
+  EXPECT_EQ(SelectedBlocks(scene, cells), Flats({ 1 }));
+  EXPECT_EQ(SelectedBlocks(reference, cells), Flats({ 1 }));
+  attributes->SetBlockPickability(data.Leaves[2], true);
+  EXPECT_EQ(SelectedBlocks(scene, cells), Flats({ 1, 4 }));
+  EXPECT_EQ(SelectedBlocks(reference, cells), Flats({ 1, 4 }));
+
+  // Everything pickable again, with no render between the two selections.
+  attributes->RemoveBlockPickabilities();
+  EXPECT_EQ(SelectedBlocks(scene, cells), Flats({ 1, 3, 4 }));
+  EXPECT_EQ(SelectedBlocks(scene, cells, centerB), Flats({ 3 }));
+
+  // The flags follow the objects when they are read again (a changed leaf).
+  mapper->SetBlockPickability(1, false);
+  EXPECT_EQ(SelectedBlocks(scene, cells), Flats({ 3, 4 }));
+  data.Leaves[0]->Modified();
+  scene.Render();
+  EXPECT_EQ(SelectedBlocks(scene, cells), Flats({ 3, 4 }));
+
+  // A flat index of no block is an error.
+  EventCounter errors(mapper, vtkCommand::ErrorEvent);
+  mapper->SetBlockPickability(99, false);
+  EXPECT_EQ(errors.Count, 1);
 }
