@@ -23,7 +23,8 @@
  * shows the server's (vtkPVTimeCriticalStatisticsInformation, gathered after
  * each render while ShowStatistics is on).
  *
- * BackgroundHierarchyBuilds (default off): surfaces are shown at once (in
+ * BackgroundHierarchyBuilds (default off here; on for new views of the
+ * ParaView GUI, vtkSMTimeCriticalRenderViewProxy): surfaces are shown at once (in
  * full, or large ones from a quick stand-in) while their hierarchies are
  * built on worker threads; each is used
  * from the first render after its build finished. In the GUI (builtin

@@ -58,6 +58,8 @@ def main(argv):
     check(process.returncode == 0, "paraview exited with status %d" % process.returncode)
     errors = [r for r in records if "error" in r]
     check(not errors, "set-up failed: %s" % errors)
+    defaults = [r["default"] for r in records if "default" in r]
+    check(defaults == [1], "a new view in the GUI has BackgroundHierarchyBuilds %s, not 1" % defaults)
     setup = [r for r in records if r.get("setup")]
     frames = [r for r in records if "frame" in r]
     check(setup and not setup[0]["tom"] and setup[0]["pending"] == 1,

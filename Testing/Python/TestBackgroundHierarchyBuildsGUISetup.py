@@ -1,7 +1,8 @@
 # SPDX-License-Identifier: BSD-3-Clause
 """Runs inside the real `paraview` through --script for
 TestBackgroundHierarchyBuildsGUI.py: loads the plugin, puts a Time-Critical
-Render View with BackgroundHierarchyBuilds on in the layout, shows a sphere
+Render View in the layout (BackgroundHierarchyBuilds is on by default in the
+GUI: logged, then checked by the driver), shows a sphere
 and renders once (drawn in full while its hierarchy builds), then logs every
 frame the view's render window completes, with whether the sphere is drawn
 from its hierarchy (one JSON object a line, with its time, flushed at once).
@@ -35,7 +36,8 @@ def _background_setup():
     view = CreateView("TimeCriticalRenderView")
     AssignViewToLayout(view=view, layout=GetLayout(), hint=0)
     view.OrientationAxesVisibility = 0
-    view.BackgroundHierarchyBuilds = 1
+    # The GUI's default (vtkSMTimeCriticalRenderViewProxy): on, not set here.
+    _background_write({"default": int(view.BackgroundHierarchyBuilds)})
     # Large enough that its build outlasts the renders the GUI makes by itself
     # after a script (about 2 s here), so that only the view can show it.
     Show(Sphere(ThetaResolution=1000, PhiResolution=1000), view)

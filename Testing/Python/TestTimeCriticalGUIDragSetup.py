@@ -52,6 +52,8 @@ def _drag_setup():
     view.OrientationAxesVisibility = 0
     if kind == "TimeCriticalRenderView":
         view.TargetFrameTime = target_ms
+        # Every frame planned on the hierarchies: the drag checks the plans.
+        view.BackgroundHierarchyBuilds = 0
 
     # 4 x 4 spheres, ~65K triangles each (2 x 256 x 127): ~1M triangles.
     spheres = []
