@@ -97,7 +97,9 @@ SurfaceStatus PrepareSurface(vtkAlgorithm* filter, vtkPolyData* input, PreparedS
   const vtkIdType degenerate = cleaned->GetNumberOfVerts() + cleaned->GetNumberOfLines();
   if (degenerate > 0)
   {
-    vtkWarningWithObjectMacro(
+    // Zero-area triangles (isosurfaces have a few): nothing visible is lost,
+    // so no warning; NumberOfDroppedCells counts them.
+    vtkDebugWithObjectMacro(
       filter, "Dropping " << degenerate << " degenerate cells (repeated or coincident points).");
   }
   surface.NumberOfDroppedCells = nonSurfaceCells + degenerate;

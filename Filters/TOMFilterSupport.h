@@ -51,7 +51,8 @@ enum class SurfaceStatus
  * coordinates that are not finite or beyond the cores' limit
  * (vtkPolyDataValidator::CheckBuildInput) and inputs without surface cells;
  * merges coincident points; triangulates polygons and strips; drops
- * vertices, lines and degenerate cells with a warning on `filter`. Duplicate
+ * vertices and lines with a warning on `filter`, and degenerate (zero-area)
+ * cells without one (a debug message); both are counted. Duplicate
  * triangles (same three points, in any order: what appending coincident
  * copies gives) are the cores' to drop (TOMBuildResult), WriteOrderedSurface's
  * to report. Reports progress up to 0.05.

@@ -214,7 +214,7 @@ TEST(vtkMergeTreeBuilder, DuplicatePointsAreMergedAndDegenerateCellsDropped)
   MessageLog log(builder);
   auto out = BuildTree(tt::DuplicatePointsAndDegenerateCells(), builder);
   EXPECT_TRUE(log.Errors.empty()) << log.AllErrors();
-  EXPECT_GE(log.Warnings.size(), 2u);
+  EXPECT_EQ(log.Warnings.size(), 1u); // the line; the zero-area triangle is silent
   EXPECT_EQ(out->GetNumberOfPoints(), 4);
   EXPECT_EQ(out->GetNumberOfPolys(), 2);
   EXPECT_EQ(builder->GetNumberOfMergedPoints(), 2);
