@@ -92,7 +92,7 @@ struct TOMBuildOptions
    * Must be finite and >= 0 (else std::invalid_argument). MergeTreeBuilder
    * ignores it (its merge tree records edge collapses only).
    */
-  double PairContractionDistance = 0.1;
+  double PairContractionDistance = 0.0; // off: the default is not measured yet
   /// Samples kept in the error curve (at most one per 256 vertices, at least 8).
   unsigned ErrorCurveSamples = 48;
   /**
