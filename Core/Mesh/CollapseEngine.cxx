@@ -598,6 +598,43 @@ void CollapseEngine::ApplyCollapse(uint32_t u, uint32_t w)
 }
 
 //------------------------------------------------------------------------------
+void CollapseEngine::AbsorbStep(uint32_t m, uint32_t w)
+{
+  // Substitution m -> w of a part joining another one (JoinParts): w is in
+  // the other part, so no triangle has both; a triangle of the part dies
+  // when its second corner goes (two corners then lead to w), as the
+  // traversal finds it. m's triangles are not moved to w: all die within
+  // the part's steps.
+  this->RecordStep(m, w);
+  Vertex& rm = this->Vertices[m];
+  const uint32_t* list = this->Pool.data() + rm.AdjStart;
+  this->Visited += rm.AdjCount;
+  for (uint32_t i = 0; i < rm.AdjCount; ++i)
+  {
+    Tri& tri = this->Tris[list[i] >> 2];
+    if (tri.Flags & DeadFlag)
+    {
+      continue;
+    }
+    const uint32_t j = list[i] & 3u;
+    const uint32_t a = tri.V[Next3(j)];
+    const uint32_t b = tri.V[Prev3(j)];
+    if ((this->Vertices[a].State | this->Vertices[b].State) & RemovedBit)
+    {
+      tri.Flags |= DeadFlag;
+      this->KillList.push_back(list[i] >> 2);
+      --this->Vertices[a].LiveCount;
+      --this->Vertices[b].LiveCount;
+    }
+  }
+  rm.AdjCount = 0;
+  rm.LiveCount = 0;
+  rm.State |= RemovedBit;
+  this->MergeQuadrics(m, w);
+  this->RecordStepError(w);
+}
+
+//------------------------------------------------------------------------------
 void CollapseEngine::PrefetchCollapse(uint32_t v, int stage)
 {
   // A software pipeline for the next collapse, which almost always starts

@@ -109,6 +109,14 @@ public:
   void Block(uint32_t v);
   /// Next relaxation level; false when all are used up (the build is done).
   bool Relax();
+  /**
+   * Pair contraction, for TOMBuilder's schedules once they are done (no edge
+   * collapse left at any level): separate parts join other parts within
+   * TOMBuildOptions::PairContractionDistance, each substituted whole into
+   * one vertex of the other part, cheapest join first (CollapseEngineJoin.cxx).
+   * False when the progress callback aborted the build.
+   */
+  bool JoinParts();
   int GetRelaxation() const { return this->CurrentLevel; }
   /// A word and a byte per vertex for the schedule, in the vertex's cache
   /// line (uninitialised).
@@ -348,6 +356,16 @@ private:
 
   void BuildOutput(TOMBuildResult& result);
 
+  // --- pair contraction (CollapseEngineJoin.cxx)
+  struct PartSet;
+  struct Join;
+  void LabelParts(PartSet& parts) const;
+  bool BestJoin(PartSet& parts, uint32_t part, Join& join);
+  void AbsorbPart(PartSet& parts, const Join& join);
+  /// One step of an absorbed part: m -> w, killing m's triangles that meet
+  /// a vertex of the part substituted before it (CollapseEngine.cxx).
+  void AbsorbStep(uint32_t m, uint32_t w);
+
   const TOMBuildOptions& Options;
   ProgressReporter Progress;
 
@@ -357,6 +375,8 @@ private:
   BigVector<uint32_t> InternalIdOf; // input point id -> internal vertex (Invalid if unused)
   BigVector<uint32_t> InputTriOf;   // internal triangle -> input triangle index
   double Scale = 1.0;
+  double Diagonal = 0.0; // of the input's bounding box, in the unit box's units
+  size_t JoinedParts = 0;
 
   uint32_t N = 0; // vertices
   uint32_t T = 0; // triangles

@@ -237,6 +237,7 @@ TOMBuildResult CollapseEngine::Run(const double* points, size_t numberOfPoints,
   }
   this->BuildOutput(result);
   result.FanTrianglesVisited = this->Visited;
+  result.JoinedParts = this->JoinedParts;
   if (!this->Progress.Report(1.0))
   {
     return aborted();

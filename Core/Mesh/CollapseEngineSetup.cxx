@@ -107,6 +107,9 @@ void CollapseEngine::ReadInput(const double* points, size_t numberOfPoints, cons
   const double extent = std::max({ hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2] });
   this->Scale = extent > 0.0 && std::isfinite(extent) ? extent : 1.0;
   const double inv = 1.0 / this->Scale;
+  this->Diagonal = std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
+                     (hi[2] - lo[2]) * (hi[2] - lo[2])) *
+    inv;
   const double center[3] = { 0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1]),
     0.5 * (lo[2] + hi[2]) };
   this->InputIdOf.resize(this->N);

@@ -80,6 +80,19 @@ struct TOMBuildOptions
    * while better collapses remain. 0 disables it.
    */
   double MinimumTriangleQuality = 0.0;
+  /**
+   * Pair contraction (Garland & Heckbert's non-edge pairs; Gobbetti &
+   * Bouvier's Fig. 2, right), TOMBuilder only: once no edge collapse is left,
+   * a separate part whose surviving vertex lies within this distance of a
+   * surviving vertex of another part is substituted into that vertex, whole
+   * (all its vertices, cheapest by the same quadric costs first), so that
+   * objects of many small parts do not keep a few vertices per part at their
+   * coarsest. A fraction of the bounding-box diagonal; 0 turns it off. Every
+   * finer resolution is unchanged (the joins come after every edge collapse).
+   * Must be finite and >= 0 (else std::invalid_argument). MergeTreeBuilder
+   * ignores it (its merge tree records edge collapses only).
+   */
+  double PairContractionDistance = 0.0; // off: the default is not measured yet
   /// Samples kept in the error curve (at most one per 256 vertices, at least 8).
   unsigned ErrorCurveSamples = 48;
   /**
@@ -109,11 +122,14 @@ struct TOMBuildResult
   size_t DroppedDuplicateTriangles = 0;
   /// Input points used by no triangle (left out of the TOM).
   size_t UnusedPoints = 0;
+  /// Separate parts substituted whole into another part (PairContractionDistance).
+  size_t JoinedParts = 0;
   /**
    * Work of the collapses: adjacency entries (fan triangles) walked by the
    * checks, the collapses and the re-evaluations of candidates, a few dozen
    * per input triangle on ordinary meshes; the fan bound
-   * (collapse::MaximumFanSize) keeps it linear on degenerate input.
+   * (collapse::MaximumFanSize) keeps it linear on degenerate input. Pair
+   * contraction adds the grid entries it looks at (bounded too).
    */
   uint64_t FanTrianglesVisited = 0;
   bool Aborted = false;

@@ -5,6 +5,9 @@
 #include "PassSchedule.h"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
 #include <utility>
 
 /*
@@ -111,16 +114,28 @@ TOMBuilder::TOMBuilder(TOMBuildOptions options)
 TOMBuildResult TOMBuilder::Build(const double* points, size_t numberOfPoints,
   const uint32_t* triangles, size_t numberOfTriangles) const
 {
+  const double pairDistance = this->Options.PairContractionDistance;
+  if (!(pairDistance >= 0.0) || !std::isfinite(pairDistance))
+  {
+    char message[200];
+    std::snprintf(message, sizeof(message),
+      "TOMBuilder: PairContractionDistance must be a finite number >= 0 (a fraction of the "
+      "bounding-box diagonal, 0 = off), not %g",
+      pairDistance);
+    throw std::invalid_argument(message);
+  }
+  // Either schedule, then the pair contractions (which join separate parts
+  // once no edge collapse is left).
   if (this->Options.Engine == TOMBuildEngine::Passes)
   {
     CollapseEngine engine(this->Options, false); // the passes need no heap
     collapse::PassSchedule schedule(engine);
-    return engine.Run(
-      points, numberOfPoints, triangles, numberOfTriangles, [&schedule] { return schedule.Run(); });
+    return engine.Run(points, numberOfPoints, triangles, numberOfTriangles,
+      [&schedule, &engine] { return schedule.Run() && engine.JoinParts(); });
   }
   CollapseEngine engine(this->Options, true);
   GreedySchedule schedule(engine);
-  return engine.Run(
-    points, numberOfPoints, triangles, numberOfTriangles, [&schedule] { return schedule.Run(); });
+  return engine.Run(points, numberOfPoints, triangles, numberOfTriangles,
+    [&schedule, &engine] { return schedule.Run() && engine.JoinParts(); });
 }
 }

@@ -22,7 +22,8 @@ namespace timecritical
  * that the build always reaches the coarsest mesh reachable (a few vertices per
  * connected component), keeping the order total. Degenerate input only: a
  * vertex whose fan keeps more than collapse::MaximumFanSize triangles stays
- * (the bound that keeps the build linear).
+ * (the bound that keeps the build linear). Separate parts then join parts
+ * close by (pair contraction, TOMBuildOptions::PairContractionDistance).
  *
  * The hot loop is hand written over flat arrays (no half-edge library): the
  * throughput goal is over 1 M input triangles per second on one core.
@@ -35,7 +36,8 @@ public:
   /**
    * points: 3 coordinates per point; triangles: 3 point ids per triangle.
    * Throws std::invalid_argument on out-of-range ids, or on coordinates of
-   * used points that are not finite or exceed MaximumCoordinateMagnitude.
+   * used points that are not finite or exceed MaximumCoordinateMagnitude,
+   * and on a PairContractionDistance that is negative, NaN or infinite.
    * Triangles with repeated ids, and repeats of an earlier triangle's three
    * points, are dropped and counted.
    */

@@ -412,8 +412,11 @@ TEST(TOMBuilder, TwoComponentsStaySeparate)
 {
   const TriangleMesh sphere = timecritical::testing::MakeSphere(3);
   const TriangleMesh mesh = TwoCopies(sphere, 3.0);
-  const TOMBuildResult r = Build(mesh);
+  TOMBuildOptions noPairs; // pair contraction joins them at the end (PairContraction*)
+  noPairs.PairContractionDistance = 0.0;
+  const TOMBuildResult r = Build(mesh, noPairs);
   ExpectValidResult(mesh, r);
+  EXPECT_EQ(r.JoinedParts, 0u);
   // One tetrahedron per sphere.
   EXPECT_EQ(r.Mesh.BaseVertexCount, 8u);
   EXPECT_EQ(r.Mesh.BaseTriangleCount, 8u);
@@ -427,6 +430,211 @@ TEST(TOMBuilder, TwoComponentsStaySeparate)
   {
     const bool left = PointOf(mesh, r, i).X < 1.5;
     ASSERT_EQ(left, PointOf(mesh, r, r.Mesh.Substitution[i]).X < 1.5);
+  }
+}
+
+//------------------------------------------------------------------------------
+// Pair contraction: separate parts join close ones once no edge collapse is left
+
+namespace
+{
+/// rows x cols unit icospheres (`subdivisions`) in the z = 0 plane, centres
+/// `spacing` apart.
+TriangleMesh SphereArray(size_t rows, size_t cols, double spacing, size_t subdivisions = 2)
+{
+  const TriangleMesh sphere = timecritical::testing::MakeSphere(subdivisions);
+  TriangleMesh out;
+  for (size_t i = 0; i < rows * cols; ++i)
+  {
+    const uint32_t offset = static_cast<uint32_t>(out.NumberOfPoints());
+    for (size_t p = 0; p < sphere.NumberOfPoints(); ++p)
+    {
+      out.Points.insert(out.Points.end(), { sphere.Points[3 * p] + spacing * double(i % cols),
+                                            sphere.Points[3 * p + 1] + spacing * double(i / cols),
+                                            sphere.Points[3 * p + 2] });
+    }
+    for (uint32_t id : sphere.Triangles)
+    {
+      out.Triangles.push_back(id + offset);
+    }
+  }
+  return out;
+}
+
+/// The mesh of a TOM at a vertex count, with its points (TOM ids).
+TriangleMesh Level(const TriangleMesh& mesh, const TOMBuildResult& r, uint32_t count)
+{
+  TriangleMesh level;
+  for (uint32_t v = 0; v < count; ++v)
+  {
+    const V3 p = PointOf(mesh, r, v);
+    level.Points.insert(level.Points.end(), { p.X, p.Y, p.Z });
+  }
+  level.Triangles = Extract(r, count);
+  return level;
+}
+
+TOMBuildOptions WithPairs(double distance)
+{
+  TOMBuildOptions options;
+  options.PairContractionDistance = distance;
+  return options;
+}
+
+/// Whether every edge of a level used other than twice ends at one of `targets`.
+bool OddEdgesEndAt(const TriangleMesh& level, const std::set<uint32_t>& targets)
+{
+  std::map<std::pair<uint32_t, uint32_t>, int> uses;
+  for (size_t k = 0; k < level.Triangles.size(); k += 3)
+  {
+    for (size_t c = 0; c < 3; ++c)
+    {
+      const uint32_t a = level.Triangles[k + c], b = level.Triangles[k + (c + 1) % 3];
+      ++uses[{ std::min(a, b), std::max(a, b) }];
+    }
+  }
+  for (const auto& [edge, u] : uses)
+  {
+    if (u != 2 && !targets.count(edge.first) && !targets.count(edge.second))
+    {
+      return false;
+    }
+  }
+  return true;
+}
+}
+
+TEST(TOMBuilder, PairContractionJoinsCloseParts)
+{
+  // 3 x 3 spheres with gaps of 0.5 (a diagonal of 7.6): without pairs each
+  // keeps a tetrahedron (36 triangles at the coarsest); with them they join.
+  const TriangleMesh mesh = SphereArray(3, 3, 2.5);
+  const TOMBuildResult off = Build(mesh, WithPairs(0.0));
+  const TOMBuildResult on = Build(mesh, WithPairs(0.5));
+  ExpectValidResult(mesh, off);
+  ExpectValidResult(mesh, on);
+  const uint32_t n = on.Mesh.GetNumberOfVertices();
+  ASSERT_EQ(off.Mesh.BaseVertexCount, 36u);
+  EXPECT_EQ(off.JoinedParts, 0u);
+  EXPECT_EQ(on.JoinedParts, 8u) << "all nine spheres end as one";
+  EXPECT_EQ(on.Mesh.BaseVertexCount, 4u);
+  EXPECT_EQ(on.Mesh.BaseTriangleCount, 4u);
+
+  // Every resolution down to the coarsest without pairs is the same: the
+  // same vertex removed at each step, the same triangle counts and errors.
+  const uint32_t baseOff = off.Mesh.BaseVertexCount;
+  for (uint32_t i = baseOff; i < n; ++i)
+  {
+    ASSERT_EQ(on.VertexOrder[i], off.VertexOrder[i]) << i;
+    ASSERT_EQ(on.TrianglesAtVertexCount[i], off.TrianglesAtVertexCount[i]) << i;
+    ASSERT_EQ(on.VertexCountError[i], off.VertexCountError[i]) << i;
+  }
+  // Below, each join substitutes a whole part: the error grows, the
+  // triangles go, and the parts become fewer.
+  EXPECT_GT(on.VertexCountError[on.Mesh.BaseVertexCount], off.VertexCountError[baseOff]);
+  EXPECT_EQ(CountComponents(Extract(on, baseOff), baseOff), 9u);
+  EXPECT_EQ(CountComponents(Extract(on, on.Mesh.BaseVertexCount), on.Mesh.BaseVertexCount), 1u);
+
+  // Manifold where the input was, except where parts join: an edge used
+  // other than twice only ever ends at a vertex a part is joining, and at
+  // most one vertex is pinched at any level (one join at a time); every
+  // level without a pinch is a set of closed manifold parts.
+  std::set<uint32_t> targets;
+  for (uint32_t i = on.Mesh.BaseVertexCount; i < baseOff; ++i)
+  {
+    targets.insert(on.Mesh.Substitution[i]);
+  }
+  for (uint32_t count = n; count >= on.Mesh.BaseVertexCount; --count)
+  {
+    const TriangleMesh level = Level(mesh, on, count);
+    ASSERT_TRUE(OddEdgesEndAt(level, targets)) << "vertex count " << count;
+    const timecritical::testing::MeshTopology t = timecritical::testing::ComputeTopology(level);
+    ASSERT_LE(t.NumberOfNonManifoldVertices, 1u) << count;
+    if (count >= baseOff || t.NumberOfNonManifoldVertices == 0)
+    {
+      ASSERT_EQ(t.NumberOfNonManifoldEdges, 0u) << count;
+      ASSERT_EQ(t.NumberOfBoundaryEdges, 0u) << count;
+      ASSERT_EQ(t.EulerCharacteristic,
+        2 * static_cast<long long>(CountComponents(level.Triangles, count)))
+        << count;
+    }
+    if (count == on.Mesh.BaseVertexCount)
+    {
+      break;
+    }
+  }
+}
+
+TEST(TOMBuilder, PairContractionKeepsDistantPartsApart)
+{
+  // Gaps of 3 (a diagonal of 11.5): no coarse vertices within 0.05 of the
+  // diagonal, nothing joins; within the whole diagonal, everything does.
+  const TriangleMesh mesh = SphereArray(2, 2, 5.0, 1);
+  const TOMBuildResult near = Build(mesh, WithPairs(0.05));
+  ExpectValidResult(mesh, near);
+  EXPECT_EQ(near.JoinedParts, 0u);
+  EXPECT_EQ(near.Mesh.BaseVertexCount, 16u);
+  const TOMBuildResult all = Build(mesh, WithPairs(1.0));
+  ExpectValidResult(mesh, all);
+  EXPECT_EQ(all.JoinedParts, 3u);
+  EXPECT_EQ(all.Mesh.BaseVertexCount, 4u);
+}
+
+TEST(TOMBuilder, PairContractionLeavesOnePartAlone)
+{
+  // One part: nothing to join, the very same TOM and work.
+  for (const TriangleMesh& mesh :
+    { timecritical::testing::MakeTorus(80, 30, 9, 0.08), BumpyGrid(20) })
+  {
+    const TOMBuildResult off = Build(mesh, WithPairs(0.0));
+    const TOMBuildResult on = Build(mesh, WithPairs(0.5));
+    ExpectValidResult(mesh, on);
+    EXPECT_TRUE(SameResult(off, on));
+    EXPECT_EQ(on.FanTrianglesVisited, off.FanTrianglesVisited);
+    EXPECT_EQ(on.JoinedParts, 0u);
+  }
+}
+
+TEST(TOMBuilder, PairContractionWorkStaysBounded)
+{
+  // 20,000 separate triangles in a unit cube, all within the distance of one
+  // another: every part is a lone triangle (no edge collapse), and a lookup
+  // would see every vertex. The lookup budgets keep the work linear.
+  TriangleMesh fog;
+  uint32_t seed = 12345;
+  auto next = [&seed]() {
+    seed = seed * 1664525u + 1013904223u;
+    return double(seed >> 8) / double(1u << 24);
+  };
+  for (uint32_t t = 0; t < 20000; ++t)
+  {
+    const double x = next(), y = next(), z = next();
+    fog.Points.insert(fog.Points.end(), { x, y, z, x + 0.01, y, z, x, y + 0.01, z });
+    fog.Triangles.insert(fog.Triangles.end(), { 3 * t, 3 * t + 1, 3 * t + 2 });
+  }
+  const TOMBuildResult r = Build(fog, WithPairs(1.0));
+  ExpectValidResult(fog, r);
+  EXPECT_GT(r.JoinedParts, 100u);
+  EXPECT_LT(r.FanTrianglesVisited, 1000u * fog.NumberOfTriangles());
+}
+
+TEST(TOMBuilder, BadPairContractionDistanceThrows)
+{
+  const TriangleMesh mesh = timecritical::testing::MakeSphere(1);
+  for (double bad : { -0.1, std::numeric_limits<double>::quiet_NaN(),
+         std::numeric_limits<double>::infinity() })
+  {
+    try
+    {
+      Build(mesh, WithPairs(bad));
+      FAIL() << "no exception for " << bad;
+    }
+    catch (const std::invalid_argument& e)
+    {
+      EXPECT_NE(std::string(e.what()).find("PairContractionDistance must be a finite number >= 0"),
+        std::string::npos)
+        << e.what();
+    }
   }
 }
 
@@ -933,6 +1141,10 @@ TEST(TOMBuilder, CoincidentCopiesGiveTheTOMOfOneCopy)
   EXPECT_EQ(b.DroppedDuplicateTriangles, 999u * 64u);
   EXPECT_TRUE(SameResult(a, b)) << "the first copy's triangles are kept, in input order";
   EXPECT_EQ(b.FanTrianglesVisited, a.FanTrianglesVisited);
+  // Pair contraction at its largest distance: still one part, the same TOM.
+  const TOMBuildResult c = Build(many, WithPairs(1.0));
+  EXPECT_TRUE(SameResult(a, c));
+  EXPECT_EQ(c.FanTrianglesVisited, a.FanTrianglesVisited);
 }
 
 TEST(TOMBuilder, WorkStaysLinearOnHugeFans)
@@ -953,6 +1165,11 @@ TEST(TOMBuilder, WorkStaysLinearOnHugeFans)
     const TOMBuildResult c = Build(crumpled);
     ExpectValidResult(crumpled, c);
     EXPECT_LT(c.FanTrianglesVisited, 4000u * crumpled.NumberOfTriangles()) << n;
+    // Two crumpled fans side by side, with pair contraction: they may join.
+    const TriangleMesh two = TwoCopies(crumpled, 2.5);
+    const TOMBuildResult p = Build(two, WithPairs(1.0));
+    ExpectValidResult(two, p);
+    EXPECT_LT(p.FanTrianglesVisited, 4000u * two.NumberOfTriangles()) << n;
   }
 }
 
