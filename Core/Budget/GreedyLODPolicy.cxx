@@ -116,18 +116,9 @@ GreedyLODPolicy::GreedyLODPolicy()
 
 void GreedyLODPolicy::SetLevels(const double* levels, std::size_t count)
 {
-  this->Levels.clear();
-  for (std::size_t i = 0; i < count; ++i)
-  {
-    if (std::isfinite(levels[i]) && levels[i] > 0.0 && levels[i] < 1.0)
-    {
-      this->Levels.push_back(levels[i]);
-    }
-  }
-  this->Levels.push_back(1.0);
-  std::sort(this->Levels.begin(), this->Levels.end());
-  this->Levels.erase(std::unique(this->Levels.begin(), this->Levels.end()), this->Levels.end());
-  this->Tuples.SetLevels(this->Levels.data(), this->Levels.size());
+  // The tuple selector keeps the same normalised levels: one rule for both.
+  this->Tuples.SetLevels(levels, count);
+  this->Levels = this->Tuples.GetLevels();
 }
 
 void GreedyLODPolicy::SetHysteresis(double hysteresis)
