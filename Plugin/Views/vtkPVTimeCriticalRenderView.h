@@ -195,8 +195,9 @@ public:
   /**
    * Background hierarchy builds for every time-critical surface of the view
    * (vtkTimeCriticalSurfaceRepresentation::SetBackgroundBuilds). Off by
-   * default: every surface then has its hierarchy when first drawn, as
-   * tests, benchmarks and scripts that time interactive frames expect.
+   * default here: every surface then has its hierarchy when first drawn, as
+   * tests, benchmarks and scripts that time interactive frames expect. The
+   * GUI turns it on for new views (vtkSMTimeCriticalRenderViewProxy).
    */
   void SetBackgroundHierarchyBuilds(bool on);
   vtkGetMacro(BackgroundHierarchyBuilds, bool);

@@ -53,6 +53,16 @@ def run():
     view.ResetCamera()
     rep.DiffuseColor = [0.9, 0.75, 0.5]
     Render(view)
+    # A new view in the GUI builds hierarchies in the background: the first
+    # frames may draw the stand-in. The screenshot compares the hierarchy's image.
+    if view.BackgroundHierarchyBuilds != 1:
+        raise AssertionError("a GUI view has BackgroundHierarchyBuilds %s, not 1"
+                             % view.BackgroundHierarchyBuilds)
+    view.SMProxy.InvokeCommand("WaitForHierarchies")
+    Render(view)
+    pending = view.GetClientSideObject().GetRenderer().GetNumberOfPendingHierarchies()
+    if pending != 0:
+        raise AssertionError("%d hierarchies pending after WaitForHierarchies" % pending)
 
     # The GUI gave the view a widget of its own: its size is the widget's,
     # beside the Render View the GUI opened at start-up.
