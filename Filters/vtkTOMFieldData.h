@@ -52,6 +52,25 @@ public:
   /// Problem found by the last Read(), empty after a successful one.
   const char* GetErrorMessage() const;
 
+  ///@{
+  /**
+   * Remember the meshes that validated (by the addresses and modification
+   * times of their points, TOM arrays and polygons), so that a later Read()
+   * of the same, unmodified data skips the costly checks (the coordinates and
+   * the replay of every prefix); the structural checks and the copy still
+   * run. For a reader that reads the same leaves again and again, as a
+   * mapper swapping in new hierarchies among old ones. Off by default.
+   * What is remembered lasts for the current and the previous reading pass
+   * (StartReadingPass() starts a new one), so that leaves gone are forgotten.
+   */
+  void SetRememberValidated(bool remember);
+  bool GetRememberValidated() const;
+  void StartReadingPass();
+  ///@}
+
+  /// Frees the copy of the last mesh read (GetMesh() is then empty).
+  void ReleaseMesh();
+
 #ifndef __VTK_WRAP__
   /// The mesh read by the last successful Read().
   const timecritical::TOMMesh& GetMesh() const;

@@ -49,6 +49,7 @@ vtkMultiresolutionPolyDataMapper::vtkMultiresolutionPolyDataMapper()
   : Internal(new Internals)
 {
   this->Internal->ReleaseProxy->Owner = this;
+  this->Internal->Reader->SetRememberValidated(true);
 }
 
 vtkMultiresolutionPolyDataMapper::~vtkMultiresolutionPolyDataMapper()

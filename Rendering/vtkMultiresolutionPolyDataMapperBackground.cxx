@@ -236,7 +236,7 @@ void vtkMultiresolutionPolyDataMapper::Internals::SubstituteBuiltLeaves(
       (hierarchy != vtkHierarchyBuildQueue::MERGE_TREE ||
         vtkMergeTreeFieldData::HasMergeTreeArrays(leaf));
     // Empty and bad leaves are the read's to skip and report.
-    if (carries || leaf->GetNumberOfPoints() < 1 || !vtkPolyDataValidator::Check(leaf).empty())
+    if (carries || leaf->GetNumberOfPoints() < 1 || !this->FactsOf(leaf).Problem.empty())
     {
       continue;
     }

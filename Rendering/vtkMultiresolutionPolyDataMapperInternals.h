@@ -19,6 +19,7 @@
 #include "TOMTraversal.h"
 #include "ViewDependentRefinement.h"
 #include "vtkHierarchyBuildQueue.h"
+#include "vtkTOMFieldData.h"
 
 #include "vtkCompositeDataDisplayAttributes.h"
 #include "vtkNew.h"
@@ -324,6 +325,24 @@ struct vtkMultiresolutionPolyDataMapper::Internals
   std::chrono::steady_clock::time_point LastSwap;
   bool ForceRead = false;       // a background setting changed: read the objects again
   bool BackgroundReset = false; // forget the builds at the next read
+
+  // What a read learns of a leaf that stays true while the leaf is not
+  // modified: the validator's verdict and the cells' bounds. Swapping in
+  // finished builds reads every leaf again; the unchanged ones are not
+  // checked again. Entries of this read and of the previous one (kept with
+  // their leaves, so that the addresses stay theirs).
+  struct LeafFacts
+  {
+    vtkSmartPointer<vtkPolyData> Leaf;
+    vtkMTimeType Time = 0;
+    std::string Problem; // vtkPolyDataValidator::Check's verdict
+    double Bounds[6] = { 1, -1, 1, -1, 1, -1 };
+  };
+  std::unordered_map<vtkPolyData*, LeafFacts> Facts;
+  std::unordered_map<vtkPolyData*, LeafFacts> PreviousFacts;
+  const LeafFacts& FactsOf(vtkPolyData* leaf);
+  // The TOM reader, remembering which arrays validated (see vtkTOMFieldData).
+  vtkNew<vtkTOMFieldData> Reader;
 
   bool WarnedNonTOM = false;
   bool WarnedBadTree = false;

@@ -73,6 +73,9 @@ void vtkMultiresolutionPolyDataMapper::ReadObjects(vtkDataObject* input)
     previous[i] = in.Objects[i].Resolution;
   }
   in.ReleaseObjects(input);
+  in.PreviousFacts.swap(in.Facts);
+  in.Facts.clear();
+  in.Reader->StartReadingPass();
   Internals::Leaves leaves = in.CollectLeaves(this, input);
   std::vector<char> explained(leaves.size(), 0); // drawn without a hierarchy for a known reason
   if (in.BackgroundReset || !this->BackgroundBuilds)
@@ -84,9 +87,8 @@ void vtkMultiresolutionPolyDataMapper::ReadObjects(vtkDataObject* input)
     in.SubstituteBuiltLeaves(this, leaves, explained);
   }
 
-  // Locals: a reader keeps a copy of the last mesh it read.
-  vtkNew<vtkTOMFieldData> reader;
-  vtkNew<vtkMergeTreeFieldData> treeReader;
+  vtkTOMFieldData* reader = in.Reader;
+  vtkNew<vtkMergeTreeFieldData> treeReader; // a local: it keeps a copy of the last tree read
   Internals::TOMCopies copies;
   in.ReserveTOMCopies(leaves);
 
@@ -108,13 +110,14 @@ void vtkMultiresolutionPolyDataMapper::ReadObjects(vtkDataObject* input)
     }
     // Bad point ids would make VTK's bounds, the index buffers and the vertex
     // buffer builder read out of bounds; NaN coordinates would poison bounds and culling.
-    const std::string problem = vtkPolyDataValidator::Check(poly);
-    if (!problem.empty())
+    const Internals::LeafFacts& facts = in.FactsOf(poly);
+    if (!facts.Problem.empty())
     {
-      vtkErrorMacro("Block " << leaf.second << " is not drawn: " << problem << ".");
+      vtkErrorMacro("Block " << leaf.second << " is not drawn: " << facts.Problem << ".");
       continue;
     }
     Internals::Object object = Internals::StartObject(poly, leaf.second, offsets);
+    std::copy(facts.Bounds, facts.Bounds + 6, object.Bounds);
     object.IsTOM = reader->Read(poly);
     if (object.IsTOM)
     {
@@ -133,6 +136,37 @@ void vtkMultiresolutionPolyDataMapper::ReadObjects(vtkDataObject* input)
   in.FinishObjects(offsets);
   in.BuildSkeleton();
   in.ResolutionColors = nullptr;
+  reader->ReleaseMesh(); // copied into the objects' arrays
+  in.PreviousFacts.clear();
+}
+
+const vtkMultiresolutionPolyDataMapper::Internals::LeafFacts&
+vtkMultiresolutionPolyDataMapper::Internals::FactsOf(vtkPolyData* leaf)
+{
+  auto current = this->Facts.find(leaf);
+  if (current != this->Facts.end() && current->second.Time == leaf->GetMTime())
+  {
+    return current->second;
+  }
+  LeafFacts& facts = this->Facts[leaf];
+  auto previous = this->PreviousFacts.find(leaf);
+  if (previous != this->PreviousFacts.end() && previous->second.Time == leaf->GetMTime())
+  {
+    facts = std::move(previous->second);
+    return facts;
+  }
+  facts.Leaf = leaf;
+  facts.Time = leaf->GetMTime();
+  facts.Problem = vtkPolyDataValidator::Check(leaf);
+  if (facts.Problem.empty() && leaf->GetNumberOfCells() > 0)
+  {
+    leaf->GetCellsBounds(facts.Bounds);
+  }
+  else if (facts.Problem.empty())
+  {
+    leaf->GetBounds(facts.Bounds);
+  }
+  return facts;
 }
 
 void vtkMultiresolutionPolyDataMapper::Internals::ReleaseObjects(vtkDataObject* input)
@@ -246,14 +280,6 @@ vtkMultiresolutionPolyDataMapper::Internals::StartObject(
   object.NumberOfVertices = poly->GetNumberOfPoints();
   object.NumberOfPolys = poly->GetNumberOfPolys();
   object.PolyConnectivity = poly->GetPolys()->GetNumberOfConnectivityIds();
-  if (poly->GetNumberOfCells() > 0)
-  {
-    poly->GetCellsBounds(object.Bounds);
-  }
-  else
-  {
-    poly->GetBounds(object.Bounds);
-  }
   return object;
 }
 

@@ -274,3 +274,88 @@ TEST(vtkTOMFieldData, AFailedReadForgetsThePreviousMesh)
   ASSERT_TRUE(reader->Read(tom));
   EXPECT_STREQ(reader->GetErrorMessage(), "");
 }
+
+namespace
+{
+/// Breaks the TOM order of `tom` in place (a substitution target above its
+/// vertex), without telling VTK when `tell` is false.
+void BreakTheOrder(vtkPolyData* tom, bool tell)
+{
+  auto substitution = vtkTypeUInt32Array::SafeDownCast(
+    tom->GetPointData()->GetArray(vtkTOMFieldData::SubstitutionArrayName()));
+  ASSERT_NE(substitution, nullptr);
+  const vtkIdType points = tom->GetNumberOfPoints();
+  substitution->SetValue(points - 2, static_cast<uint32_t>(points - 1));
+  if (tell)
+  {
+    substitution->Modified();
+  }
+}
+}
+
+TEST(vtkTOMFieldData, RememberedValidationsAreSkippedUntilTheDataChanges)
+{
+  auto tom = Copy(SphereTOM());
+  vtkNew<vtkTOMFieldData> reader;
+  EXPECT_FALSE(reader->GetRememberValidated());
+  reader->SetRememberValidated(true);
+  ASSERT_TRUE(reader->Read(tom));
+  const auto triangles = reader->GetNumberOfTriangles();
+  // A change VTK is not told of is not seen: the validation is remembered
+  // (the contract of every VTK cache keyed by modification times)...
+  BreakTheOrder(tom, false);
+  ASSERT_TRUE(reader->Read(tom));
+  EXPECT_EQ(reader->GetNumberOfTriangles(), triangles);
+  // ...while a reader without the memory sees it,
+  EXPECT_TRUE(Contains(ReadError(tom), "invalid TOM: "));
+  // and so does this one once the array says it was modified.
+  BreakTheOrder(tom, true);
+  EXPECT_FALSE(reader->Read(tom));
+  EXPECT_TRUE(Contains(reader->GetErrorMessage(), "invalid TOM: "));
+}
+
+TEST(vtkTOMFieldData, RememberedValidationsLastTwoReadingPasses)
+{
+  auto tom = Copy(SphereTOM());
+  vtkNew<vtkTOMFieldData> reader;
+  reader->SetRememberValidated(true);
+  ASSERT_TRUE(reader->Read(tom));
+  BreakTheOrder(tom, false);
+  reader->StartReadingPass(); // read in the previous pass: still remembered
+  ASSERT_TRUE(reader->Read(tom));
+  reader->StartReadingPass();
+  reader->StartReadingPass(); // not read in the previous pass: forgotten
+  EXPECT_FALSE(reader->Read(tom));
+  // Turning the memory off forgets too.
+  auto other = Copy(SphereTOM());
+  ASSERT_TRUE(reader->Read(other));
+  BreakTheOrder(other, false);
+  reader->SetRememberValidated(false);
+  reader->SetRememberValidated(true);
+  EXPECT_FALSE(reader->Read(other));
+}
+
+TEST(vtkTOMFieldData, RememberedValidationsStillCheckTheStructure)
+{
+  // What the memory skips is the costly part only: a count that no longer
+  // matches is reported even for arrays that validated.
+  auto tom = Copy(SphereTOM());
+  vtkNew<vtkTOMFieldData> reader;
+  reader->SetRememberValidated(true);
+  ASSERT_TRUE(reader->Read(tom));
+  vtkNew<vtkCellArray> fewer;
+  fewer->DeepCopy(tom->GetPolys());
+  fewer->ResizeExact(fewer->GetNumberOfCells() - 1, 3 * (fewer->GetNumberOfCells() - 1));
+  tom->SetPolys(fewer);
+  EXPECT_FALSE(reader->Read(tom));
+  EXPECT_TRUE(Contains(reader->GetErrorMessage(), "triangles, the data has"));
+}
+
+TEST(vtkTOMFieldData, ReleaseMeshEmptiesTheCopy)
+{
+  vtkNew<vtkTOMFieldData> reader;
+  ASSERT_TRUE(reader->Read(SphereTOM()));
+  reader->ReleaseMesh();
+  EXPECT_TRUE(reader->GetMesh().Triangles.empty());
+  EXPECT_EQ(reader->GetNumberOfTriangles(), 0);
+}

@@ -415,6 +415,55 @@ TEST(MultiresolutionMapper, LeavesWithBadPointIdsOrCoordinatesAreErrorsNotCrashe
   EXPECT_EQ(scene.CountForeground(), 0);
 }
 
+TEST(MultiresolutionMapper, AReadChecksAgainOnlyTheLeavesModifiedSinceTheLast)
+{
+  // Reads remember each leaf's verdict and bounds while it is unmodified
+  // (finished background builds make the mapper read every leaf again): a
+  // leaf moved, or broken, and Modified() is checked again.
+  vtkNew<vtkMultiBlockDataSet> blocks;
+  blocks->SetNumberOfBlocks(2);
+  auto still = MakeTOM(0.5, 30, 20);
+  auto moving = MakeTOM(0.5, 30, 20, 2.0, 0.0, 0.0);
+  blocks->SetBlock(0, still);
+  blocks->SetBlock(1, moving);
+  vtkNew<vtkMultiresolutionPolyDataMapper> mapper;
+  vtkNew<vtkTest::ErrorObserver> errors;
+  mapper->AddObserver(vtkCommand::ErrorEvent, errors);
+  mapper->SetInputDataObject(blocks);
+  mapper->UpdateObjects();
+  ASSERT_EQ(mapper->GetNumberOfObjects(), 2);
+  double before[6];
+  mapper->GetObjectBounds(1, before);
+
+  vtkPoints* points = moving->GetPoints();
+  for (vtkIdType p = 0; p < points->GetNumberOfPoints(); ++p)
+  {
+    double x[3];
+    points->GetPoint(p, x);
+    points->SetPoint(p, x[0] + 5.0, x[1], x[2]);
+  }
+  points->Modified();
+  mapper->UpdateObjects();
+  double after[6];
+  mapper->GetObjectBounds(1, after);
+  EXPECT_NEAR(after[0], before[0] + 5.0, 1e-6);
+  EXPECT_NEAR(after[1], before[1] + 5.0, 1e-6);
+  EXPECT_FALSE(errors->GetError());
+
+  points->SetPoint(3, std::numeric_limits<double>::quiet_NaN(), 0.0, 0.0);
+  points->Modified();
+  mapper->UpdateObjects();
+  ASSERT_TRUE(errors->GetError());
+  EXPECT_NE(errors->GetErrorMessage().find("Block 2 is not drawn: point 3 has a non-finite"),
+    std::string::npos)
+    << errors->GetErrorMessage();
+  ASSERT_EQ(mapper->GetNumberOfObjects(), 1);
+  double kept[6];
+  mapper->GetObjectBounds(0, kept);
+  EXPECT_DOUBLE_EQ(kept[0], still->GetBounds()[0]);
+  EXPECT_DOUBLE_EQ(kept[1], still->GetBounds()[1]);
+}
+
 TEST(MultiresolutionMapper, PolyDataAndPartitionedInput)
 {
   auto tom = MakeTOM(0.6, 50, 36);
