@@ -280,6 +280,9 @@ void vtkMultiresolutionPolyDataMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "BackgroundBuilds: " << this->BackgroundBuilds << " (hierarchy "
      << this->BackgroundHierarchy << ", pending " << in.PendingHierarchies << ", swapped in "
      << this->NumberOfSwappedHierarchies << ")\n";
+  os << indent << "NumberOfObjectReads: " << this->NumberOfObjectReads << " (untaken "
+     << this->UntakenObjectReadTime << " s; last vertex buffer build "
+     << this->LastVertexBufferBuildTime << " s)\n";
   os << indent << "NumberOfRewrittenObjects: " << this->NumberOfRewrittenObjects << "\n";
   os << indent << "IndexBytesUploaded: " << this->IndexBytesUploaded << "\n";
   os << indent << "CellDataBytesUploaded: " << this->CellDataBytesUploaded << "\n";

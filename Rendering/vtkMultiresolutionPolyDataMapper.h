@@ -113,6 +113,7 @@
 #include "TimeCriticalRenderingModule.h" // for export macro
 #include "vtkOpenGLPolyDataMapper.h"
 
+#include <chrono>  // for TakeObjectReadTime
 #include <map>     // for ReplaceShaderValues
 #include <memory>  // for std::unique_ptr
 #include <string>  // for UploadLeafBuffers
@@ -391,6 +392,24 @@ public:
 #endif
   ///@}
 
+  ///@{
+  /**
+   * Work outside the budget's model, for the renderer to count as spent:
+   * reads of the objects so far (each new input, changed leaf or swap of
+   * finished builds reads them all), the seconds of the last vertex buffer
+   * build (a read is followed by one at the next draw; 0 before the first),
+   * and (C++) the seconds of the reads since the last TakeObjectReadTime(),
+   * 0 when the last of them ended before `frameStart` (reads outside the
+   * frame, as a ResetCamera() before it). Taking starts the count again: the
+   * renderer that plans the frames takes it once per frame.
+   */
+  vtkGetMacro(NumberOfObjectReads, vtkIdType);
+  vtkGetMacro(LastVertexBufferBuildTime, double);
+#ifndef __VTK_WRAP__
+  double TakeObjectReadTime(std::chrono::steady_clock::time_point frameStart);
+#endif
+  ///@}
+
   /// Bounds of the whole input (all leaves).
   void ComputeBounds() override;
   double* GetBounds() VTK_SIZEHINT(6) override;
@@ -510,6 +529,10 @@ protected:
   int BackgroundHierarchy = 0;
   int BackgroundInterimDivisions = 64;
   vtkIdType NumberOfSwappedHierarchies = 0;
+  vtkIdType NumberOfObjectReads = 0;
+  double UntakenObjectReadTime = 0.0;
+  std::chrono::steady_clock::time_point LastObjectReadEnd;
+  double LastVertexBufferBuildTime = 0.0;
 
 private:
   vtkMultiresolutionPolyDataMapper(const vtkMultiresolutionPolyDataMapper&) = delete;

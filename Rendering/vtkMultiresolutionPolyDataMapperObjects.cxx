@@ -58,9 +58,22 @@ void vtkMultiresolutionPolyDataMapper::UpdateObjects()
   changed = this->TakeBuiltHierarchies() || changed || in.ForceRead;
   if (changed)
   {
+    const auto start = std::chrono::steady_clock::now();
     this->ReadObjects(input);
+    this->LastObjectReadEnd = std::chrono::steady_clock::now();
+    this->UntakenObjectReadTime +=
+      std::chrono::duration<double>(this->LastObjectReadEnd - start).count();
+    ++this->NumberOfObjectReads;
   }
   this->UpdateBlockAttributes();
+}
+
+double vtkMultiresolutionPolyDataMapper::TakeObjectReadTime(
+  std::chrono::steady_clock::time_point frameStart)
+{
+  const double seconds = this->LastObjectReadEnd < frameStart ? 0.0 : this->UntakenObjectReadTime;
+  this->UntakenObjectReadTime = 0.0;
+  return seconds;
 }
 
 //------------------------------------------------------------------------------

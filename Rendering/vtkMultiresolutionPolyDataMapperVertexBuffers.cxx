@@ -68,7 +68,10 @@ void vtkMultiresolutionPolyDataMapper::BuildBufferObjects(vtkRenderer* ren, vtkA
   {
     this->ScalarVisibility = 0;
   }
+  const auto start = std::chrono::steady_clock::now();
   this->BuildVertexBuffers(ren, act);
+  this->LastVertexBufferBuildTime =
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   this->ScalarVisibility = scalarVisibility;
   ++in.VertexBufferBuildCount;
 }

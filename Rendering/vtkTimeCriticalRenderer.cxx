@@ -491,6 +491,7 @@ void vtkTimeCriticalRenderer::OnWindowEnd()
   this->MeasuredDrawingTime =
     in.DrawingEndValid ? Seconds(in.FrameStart, in.DrawingEnd) : this->MeasuredFrameTime;
   in.DrawingEndValid = false;
+  this->DataChangeTime = this->MeasureDataChange();
   // A frame that calibrated took the hidden renders' time too: the user
   // waited for it, but it says nothing about the model.
   const bool calibrated = in.PendingCalibrated;
@@ -508,7 +509,7 @@ void vtkTimeCriticalRenderer::OnWindowEnd()
     // real one. Their own correction above still follows them.
     // The fronts' refinement time is measured, not modelled by the
     // features: the model learns the drawing alone.
-    const double drawing = this->MeasuredDrawingTime - this->RefinementTime;
+    const double drawing = this->MeasuredDrawingTime - this->RefinementTime - this->DataChangeTime;
     if (in.PendingStill && in.UsingDefaults)
     {
       this->ScaleDefaultCoefficients(drawing);
@@ -518,6 +519,21 @@ void vtkTimeCriticalRenderer::OnWindowEnd()
       in.StoreCoefficients();
     }
   }
+}
+
+double vtkTimeCriticalRenderer::MeasureDataChange()
+{
+  // The reads as measured before the frame was planned, the vertex buffer
+  // builds as they went in its drawing.
+  double seconds = 0.0;
+  for (const auto& entry : this->Internal->Actors)
+  {
+    if (entry.ReadTime > 0.0)
+    {
+      seconds += entry.ReadTime + entry.Mapper->GetLastVertexBufferBuildTime();
+    }
+  }
+  return seconds;
 }
 
 //------------------------------------------------------------------------------
@@ -628,6 +644,7 @@ void vtkTimeCriticalRenderer::GatherObjects()
   in.ObjectActor.clear();
   in.ObjectIndex.clear();
   in.Load = timecritical::FrameCostModel::FrameLoad();
+  in.DataChangeEstimate = 0.0;
 
   int size[2] = { 0, 0 }, origin[2] = { 0, 0 };
   this->GetTiledSizeAndOrigin(&size[0], &size[1], &origin[0], &origin[1]);
@@ -662,6 +679,11 @@ void vtkTimeCriticalRenderer::GatherObjects()
     mapper->SetHighlightFactor(this->HighlightFactor);
     mapper->UpdateObjects();
     Internals::ActorEntry entry;
+    entry.ReadTime = mapper->TakeObjectReadTime(in.FrameStart);
+    if (entry.ReadTime > 0.0)
+    {
+      in.DataChangeEstimate += entry.ReadTime + mapper->GetLastVertexBufferBuildTime();
+    }
     entry.Actor = actor;
     entry.Mapper = mapper;
     entry.First = in.ObjectActor.size();
@@ -884,7 +906,7 @@ void vtkTimeCriticalRenderer::ChooseResolutions(bool still)
   timecritical::FrameCostModel::FrameLoad load = in.Load;
   load.DrawCalls += mapperCalls;
   const double fixed = correction * (in.Model.FixedTime(load, in.TotalPixels) + fixedFronts) +
-    in.RefinementEstimate + this->CompositingTime;
+    in.RefinementEstimate + this->CompositingTime + in.DataChangeEstimate;
   // Time-limited budget fronts: at most the limit per mapper this frame.
   for (const auto& entry : in.Actors)
   {

@@ -365,6 +365,14 @@ public:
   vtkGetMacro(MeasuredFrameTime, double);    ///< last completed frame (NaN before any)
   vtkGetMacro(OptimizationTime, double);     ///< seconds spent in the policy
   vtkGetMacro(HeuristicsTime, double);       ///< seconds spent culling and measuring
+  /**
+   * Seconds the last frame spent on changed data, outside the cost model:
+   * mappers reading their objects again (new input, changed leaves, finished
+   * background builds swapped in) and rebuilding their vertex buffers. The
+   * frame plans for it as fixed time (the vertex buffers by their last
+   * build's time) and the online calibration leaves it out.
+   */
+  vtkGetMacro(DataChangeTime, double);
   vtkGetMacro(OptimizationIterations, int);
   vtkGetMacro(OptimizationConverged, bool);
   vtkGetMacro(TrianglesDrawn, vtkIdType);    ///< all triangles (objects and ordinary actors)
@@ -486,6 +494,7 @@ protected:
   double CompositingTime = 0.0;
   double OptimizationTime = 0.0;
   double HeuristicsTime = 0.0;
+  double DataChangeTime = 0.0;
   int OptimizationIterations = 0;
   bool OptimizationConverged = true;
   vtkIdType TrianglesDrawn = 0;
@@ -507,6 +516,7 @@ private:
   void MeasureObjects();
   void ChooseResolutions(bool still);
   void RunCalibration();
+  double MeasureDataChange(); ///< seconds of the pending frame's reads and vertex buffer builds
   void FinishFrame();
 
   struct Internals;

@@ -152,6 +152,7 @@ struct vtkTimeCriticalRenderer::Internals
     vtkActor* Actor = nullptr;
     vtkMultiresolutionPolyDataMapper* Mapper = nullptr;
     std::size_t First = 0, Count = 0; // object range
+    double ReadTime = 0.0; // seconds the mapper spent reading its objects since the last frame
   };
   std::vector<ActorEntry> Actors;
   std::vector<std::pair<vtkWeakPointer<vtkActor>, double>> Importance;
@@ -169,6 +170,7 @@ struct vtkTimeCriticalRenderer::Internals
   std::vector<double> RefinementTimes;
   std::vector<char> ViewDependent;
   double RefinementEstimate = 0.0; // smoothed refinement time of the recent frames
+  double DataChangeEstimate = 0.0; // this frame's reads, and vertex buffer builds to come
 
   // Visible objects, compacted for the policies.
   std::vector<std::size_t> Visible;

@@ -215,6 +215,34 @@ TEST(TimeCriticalRenderer, NewlyVisibleObjectsArePlannedAtAHigherCost)
   EXPECT_LE(scene.Renderer->GetPredictedFrameTime(), scene.Renderer->GetTargetFrameTime() * (1 + 1e-9));
 }
 
+TEST(TimeCriticalRenderer, DataChangedInAFrameIsPlannedAsSpentTime)
+{
+  // A frame whose mappers read their objects again (new data, swapped-in
+  // hierarchies) has that much less time to draw: the read counts as fixed
+  // time, and the frames after it do not.
+  auto grid = SphereGrid(3);
+  Scene scene(grid);
+  scene.PinCosts(1e-6);
+  scene.Renderer->SetTargetFrameTime(0.002 + 1e-6 * 0.3 * static_cast<double>(scene.TotalTriangles()));
+  scene.Window->Render(); // the objects were read by ResetCamera(), outside the frame
+  EXPECT_EQ(scene.Renderer->GetDataChangeTime(), 0.0);
+  EXPECT_NEAR(scene.Renderer->GetFixedFrameTime(), 0.002, 1e-12);
+
+  grid->SetBlock(4, MovedSphere(0.0, 0.0, 0.5));
+  const vtkIdType reads = scene.Mapper->GetNumberOfObjectReads();
+  scene.Window->Render();
+  EXPECT_EQ(scene.Mapper->GetNumberOfObjectReads(), reads + 1);
+  const double change = scene.Renderer->GetDataChangeTime();
+  EXPECT_GT(change, 0.0);
+  EXPECT_GT(scene.Renderer->GetFixedFrameTime(), 0.002);
+  EXPECT_LE(scene.Renderer->GetPredictedFrameTime(), scene.Renderer->GetTargetFrameTime() * (1 + 1e-9));
+
+  scene.Window->Render();
+  EXPECT_EQ(scene.Mapper->GetNumberOfObjectReads(), reads + 1);
+  EXPECT_EQ(scene.Renderer->GetDataChangeTime(), 0.0);
+  EXPECT_NEAR(scene.Renderer->GetFixedFrameTime(), 0.002, 1e-12);
+}
+
 TEST(TimeCriticalRenderer, MeasuresFrameTimes)
 {
   Scene scene(SphereGrid(2));
