@@ -513,7 +513,14 @@ void vtkTimeCriticalRenderer::OnWindowEnd()
     {
       this->ScaleDefaultCoefficients(drawing);
     }
-    else if (!in.PendingStill && in.Calibrator.Update(in.Features.data(), drawing))
+    // Frames that dropped objects do not refit the coefficients either: the
+    // drop holds them at the target whatever they draw, so their time says
+    // little about the features, and the optimizer's own time (it grows with
+    // the objects in view) went to the fill coefficient, which then valued
+    // every object by its pixels and dropped large ones (W6). Their
+    // correction above still follows them.
+    else if (!in.PendingStill && this->NumberOfDroppedObjects == 0 &&
+      in.Calibrator.Update(in.Features.data(), drawing))
     {
       in.StoreCoefficients();
     }
