@@ -514,7 +514,14 @@ void vtkTimeCriticalRenderer::OnWindowEnd()
     {
       this->ScaleDefaultCoefficients(drawing);
     }
-    else if (!in.PendingStill && in.Calibrator.Update(in.Features.data(), drawing))
+    // Frames that dropped objects do not refit the coefficients either: the
+    // drop holds them at the target whatever they draw, so their time says
+    // little about the features, and the optimizer's own time (it grows with
+    // the objects in view) went to the fill coefficient, which then valued
+    // every object by its pixels and dropped large ones (W6). Their
+    // correction above still follows them.
+    else if (!in.PendingStill && this->NumberOfDroppedObjects == 0 &&
+      in.Calibrator.Update(in.Features.data(), drawing))
     {
       in.StoreCoefficients();
     }
@@ -706,6 +713,7 @@ void vtkTimeCriticalRenderer::GatherObjects()
     v->resize(n);
   }
   in.Culled.resize(n);
+  in.Dropped.resize(n);
   in.Triangles.resize(n);
   in.Vertices.resize(n);
   in.Splits.resize(n);
@@ -923,32 +931,19 @@ void vtkTimeCriticalRenderer::ChooseResolutions(bool still)
   input.MaxTriangles = in.VisibleTriangles.data();
   input.Previous = anyPrevious ? in.Previous.data() : nullptr;
   input.Alpha = in.Degradation.GetAlpha();
-  // Plan for predicted + k sigma <= target; the prediction itself stays
-  // unbiased. The margin never takes more than MaximumMarginShare of the time
-  // the fixed part and the objects' coarsest levels leave: when noise and a
-  // large fixed part meet, the objects get the best allocation of the rest
-  // rather than all their coarsest levels.
   const double target = in.EffectiveTarget;
-  this->SafetyMargin = 0.0;
-  if (!still && this->OnlineCalibration)
-  {
-    double lowest = 0.0;
-    for (std::size_t k = 0; k < m; ++k)
-    {
-      lowest += in.MaxTime[k] * in.MinResolution[k];
-    }
-    const double wanted =
-      std::min(this->SafetyFactor * in.Corrector.GetRelativeSpread(), MaximumMargin) * target;
-    this->SafetyMargin =
-      std::min(wanted, MaximumMarginShare * std::max(0.0, target - fixed - lowest));
-  }
+  const double objectFixed = this->PrepareDropping(still, correction);
+  this->SafetyMargin = this->PlanningMargin(target, fixed, objectFixed, still);
   input.TargetFrameTime = target - this->SafetyMargin;
   input.FixedTime = fixed;
   input.LastFrameTime = this->MeasuredFrameTime;
 
-  timecritical::ResolutionPolicy* policy =
-    still ? &in.FullResolution : in.GetPolicy(this->Policy);
-  const timecritical::PolicyResult result = policy->Select(input, in.Chosen.data());
+  // Overloaded (even the coarsest levels do not fit): the least valuable
+  // objects are dropped; otherwise the policy chooses resolutions as usual.
+  const bool dropping = this->ChooseWithDropping(input.TargetFrameTime, fixed, objectFixed);
+  const timecritical::PolicyResult result = dropping
+    ? in.DropResult
+    : (still ? &in.FullResolution : in.GetPolicy(this->Policy))->Select(input, in.Chosen.data());
   this->PredictedFrameTime = result.PredictedFrameTime;
   // What the model predicts of the drawing (compositing is measured apart).
   in.RawPrediction = (result.PredictedFrameTime - this->CompositingTime) / correction;
@@ -986,8 +981,9 @@ void vtkTimeCriticalRenderer::FinishFrame()
       in.Merges[o] = entry.Mapper->GetObjectMerges(index);
       in.RefinementTimes[o] = entry.Mapper->GetObjectRefinementTime(index);
       objectTriangles += static_cast<double>(in.Triangles[o]);
-      // Culled objects restart from rmin when they come back (NaN = new).
-      history.Resolution[i] = in.Culled[o] ? NaN : in.Resolution[o];
+      // Culled and dropped objects restart from rmin when they come back
+      // (NaN = new: their data was not touched, so it is planned cold).
+      history.Resolution[i] = in.Culled[o] || in.Dropped[o] ? NaN : in.Resolution[o];
       history.CenterX[i] = in.CenterX[o];
       history.CenterY[i] = in.CenterY[o];
     }
@@ -1019,7 +1015,9 @@ void vtkTimeCriticalRenderer::FinishFrame()
     mapperCalls += entry.Mapper->GetNumberOfDrawCalls();
   }
   load.DrawCalls += mapperCalls;
-  in.Model.GetFeatures(load, objectTriangles, in.TotalPixels, in.Features.data());
+  // Dropped objects cover no pixel and take no setup: the model learns what was drawn.
+  load.Objects -= static_cast<double>(this->NumberOfDroppedObjects);
+  in.Model.GetFeatures(load, objectTriangles, in.DrawnPixels, in.Features.data());
   in.FramePending = true;
 }
 
@@ -1075,4 +1073,6 @@ void vtkTimeCriticalRenderer::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "TrianglesDrawn: " << this->TrianglesDrawn << "\n";
   os << indent << "NumberOfObjects: " << this->NumberOfObjects << "\n";
   os << indent << "NumberOfCulledObjects: " << this->NumberOfCulledObjects << "\n";
+  os << indent << "DropObjectsWhenOverloaded: " << this->DropObjectsWhenOverloaded << "\n";
+  os << indent << "NumberOfDroppedObjects: " << this->NumberOfDroppedObjects << "\n";
 }

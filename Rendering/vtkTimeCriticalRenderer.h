@@ -196,6 +196,34 @@ public:
   vtkGetMacro(StillUpdateRateThreshold, double);
   ///@}
 
+  ///@{
+  /**
+   * "No polygons" level (Funkhouser & Séquin): when even the coarsest levels
+   * of the visible objects do not fit the target, an interactive frame
+   * leaves the least valuable objects out so that it holds the target.
+   * Default on. Used by the ACTIVE_SET and GREEDY_LOD policies (their
+   * SelectTuples(): timecritical::TupleOptimizer, GreedyTupleSelector);
+   * the other policies, and still frames, draw every visible object. An
+   * object's value is what it loses when not drawn, Interest x Npix (its
+   * projected pixels times the velocity, eccentricity and importance
+   * factors, as timecritical::AlgorithmDegradation has it), and an object is
+   * never dropped while a less valuable one whose coarsest level costs
+   * more is drawn. A frame whose fixed part alone (clear, swap, ordinary
+   * actors, draw calls) reaches the target drops nothing: no choice of
+   * objects could hold it. Dropped objects are not drawn at all (resolution 0, as a
+   * culled object: nothing of them is drawn, picked or shown in the
+   * resolution map); a bounding-box outline level is not offered (see
+   * docs/rendering.md).
+   */
+  vtkSetMacro(DropObjectsWhenOverloaded, bool);
+  vtkGetMacro(DropObjectsWhenOverloaded, bool);
+  vtkBooleanMacro(DropObjectsWhenOverloaded, bool);
+  /// Objects the last frame dropped (0 when it was not overloaded).
+  vtkGetMacro(NumberOfDroppedObjects, vtkIdType);
+  /// Whether the last frame dropped object i (false for a bad index).
+  bool GetObjectDropped(vtkIdType object) const;
+  ///@}
+
   /// Render the window once with every object at full resolution.
   void StillRender();
 
@@ -503,6 +531,8 @@ protected:
   vtkIdType NumberOfCulledObjects = 0;
   double CoveredPixels = 0.0;
   bool LastRenderWasStill = false;
+  bool DropObjectsWhenOverloaded = true;
+  vtkIdType NumberOfDroppedObjects = 0;
 
 private:
   vtkTimeCriticalRenderer(const vtkTimeCriticalRenderer&) = delete;
@@ -515,6 +545,12 @@ private:
   void GatherObjects();
   void MeasureObjects();
   void ChooseResolutions(bool still);
+  // Dropping (vtkTimeCriticalRendererDropping.cxx): the visible objects'
+  // per-object fixed costs and values (returns the sum of those costs), the
+  // safety margin, and the choice with dropping when the frame is overloaded.
+  double PrepareDropping(bool still, double correction);
+  double PlanningMargin(double target, double fixed, double objectFixed, bool still);
+  bool ChooseWithDropping(double target, double fixed, double objectFixed);
   void RunCalibration();
   double MeasureDataChange(); ///< seconds of the pending frame's reads and vertex buffer builds
   void FinishFrame();

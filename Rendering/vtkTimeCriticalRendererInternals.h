@@ -2,6 +2,7 @@
 // vtkTimeCriticalRenderer's private state, shared by its implementation
 // files (vtkTimeCriticalRenderer.cxx: settings, objects, the frame;
 // vtkTimeCriticalRendererCalibration.cxx: the start-up calibration;
+// vtkTimeCriticalRendererDropping.cxx: objects dropped when overloaded;
 // vtkTimeCriticalRendererHierarchies.cxx: background builds).
 #ifndef vtkTimeCriticalRendererInternals_h
 #define vtkTimeCriticalRendererInternals_h
@@ -22,6 +23,7 @@
 #include "FullResolutionPolicy.h"
 #include "GreedyLODPolicy.h"
 #include "StaticThresholdPolicy.h"
+#include "TupleProblem.h"
 #include "ViewHeuristics.h"
 
 #include "vtkActor.h"
@@ -177,6 +179,16 @@ struct vtkTimeCriticalRenderer::Internals
   std::vector<timecritical::DegradationModel::ObjectView> Views;
   std::vector<double> Weight, MaxTime, MinResolution, VisiblePixels, VisibleTriangles, Previous,
     Chosen;
+  // Dropping (overloaded frames), per visible object: the time the object
+  // takes whatever its resolution (fill, setup), what it loses when not
+  // drawn, its tuple's algorithm (TupleProblem::NotDrawn: dropped). Members,
+  // so that their capacity is kept from frame to frame.
+  std::vector<double> ObjectFixedCost, DropDegradation;
+  std::vector<int> TupleAlgorithm;
+  std::vector<char> Dropped; // per object (frame numbering)
+  bool DropPossible = false; // this frame may drop (interactive, setting on, policy that drops)
+  double DrawnPixels = 0.0;  // covered pixels of the objects drawn (not dropped)
+  timecritical::PolicyResult DropResult; // the choice of a frame that dropped
 
   // What each mapper's objects looked like last frame (for warm start and velocity).
   struct MapperHistory

@@ -198,7 +198,7 @@ TupleProblem::Solution GreedyTupleSelector::Solve(const TupleProblem& p, int* a,
   for (std::size_t swaps = 0; dropping && swaps < n; ++swaps)
   {
     std::size_t i = n, j = n;
-    if (!p.FindValueOrderViolation(a, i, j))
+    if (!p.FindValueOrderViolation(a, i, j, this->ValueOrder))
     {
       break;
     }

@@ -79,6 +79,7 @@ private:
   std::vector<Step> Steps;
   std::vector<std::size_t> Start, Current; // per object: first hull point (its base), point taken
   std::vector<char> Blocked;               // per object: a step did not fit
+  TupleProblem::ValueOrderScratch ValueOrder;
 };
 }
 

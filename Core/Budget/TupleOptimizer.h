@@ -50,7 +50,8 @@ namespace timecritical
  * 5. value order: while an object is dropped and a less valuable one (less
  *    to lose when not drawn) whose cheapest tuple costs more is drawn, the
  *    two are swapped (it fits: the dropped one is cheaper). The relaxation
- *    never does that; the search, packing the time, can.
+ *    never does that; the search, packing the time, can. The resolutions
+ *    are re-solved once, after the last swap.
  * Why: the algorithm choice is discrete and each algorithm has its own error
  * exponent (Funkhouser's m = 1 flat, 2 Gouraud), so one ActiveSetOptimizer
  * call cannot hold it; the relaxation keeps the per-object closed form and
@@ -65,7 +66,8 @@ namespace timecritical
  * Levels below the coarsest mesh are used only when TupleProblem::NeedsDropping();
  * with dropping off and the cheapest tuples over budget, every object gets
  * its cheapest tuple and Solution::Infeasible is set. The resolution of a
- * box or dropped object is returned as 0. Buffers are reused across calls.
+ * box or dropped object is returned as 0. Buffers are reused across calls: once they have grown to
+ * the problem's size, Solve() does not allocate.
  */
 class TIMECRITICALBUDGETCORE_EXPORT TupleOptimizer
 {
@@ -142,7 +144,8 @@ private:
     double Key;
   };
   std::vector<Move> Moves;
-  std::vector<int> Choices, Others;
+  std::vector<int> Choices, Others, PairChoices;
+  TupleProblem::ValueOrderScratch ValueOrder;
 };
 }
 

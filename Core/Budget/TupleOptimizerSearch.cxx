@@ -261,7 +261,7 @@ void TupleOptimizer::LocalSearch(int* a, double* r, double& objective, int& iter
   const std::size_t n = this->P->Count;
   const bool pairs = n <= this->Opts.PairLimit;
   std::vector<int>& first = this->Choices;
-  std::vector<int> second;
+  std::vector<int>& second = this->PairChoices; // a member: no allocation per call
   for (int round = 0; round < 4; ++round)
   {
     bool improved = false;
@@ -331,25 +331,34 @@ void TupleOptimizer::KeepValueOrder(int* a, double* r, double& objective, int& i
 {
   const TupleProblem& p = *this->P;
   const std::size_t n = p.Count;
-  for (std::size_t swaps = 0; swaps < n; ++swaps)
+  // The swaps depend on the algorithms only, and every swap frees time (i's
+  // cheapest tuple costs less than what j takes), so the resolutions are
+  // re-solved once, after the last swap: the same answer as re-solving after
+  // each, without its O(n) bisection per swap.
+  std::copy(a, a + n, this->TryA.begin());
+  std::size_t swaps = 0;
+  for (; swaps < n; ++swaps)
   {
     std::size_t i = n, j = n;
-    if (!p.FindValueOrderViolation(a, i, j))
+    if (!p.FindValueOrderViolation(this->TryA.data(), i, j, this->ValueOrder))
     {
-      return;
+      break;
     }
     // Draw i instead of j: i's cheapest tuple costs less than j's, so it fits.
-    std::copy(a, a + n, this->TryA.begin());
     this->TryA[i] = p.CheapestAlgorithm(i);
     this->TryA[j] = TupleProblem::NotDrawn;
-    const double f = this->Evaluate(iterations);
-    if (!std::isfinite(f))
-    {
-      return; // cannot happen but for rounding
-    }
-    objective = f;
-    std::copy(this->TryA.begin(), this->TryA.begin() + static_cast<std::ptrdiff_t>(n), a);
-    std::copy(this->TryR.begin(), this->TryR.begin() + static_cast<std::ptrdiff_t>(n), r);
   }
+  if (swaps == 0)
+  {
+    return;
+  }
+  const double f = this->Evaluate(iterations);
+  if (!std::isfinite(f))
+  {
+    return; // cannot happen but for rounding
+  }
+  objective = f;
+  std::copy(this->TryA.begin(), this->TryA.begin() + static_cast<std::ptrdiff_t>(n), a);
+  std::copy(this->TryR.begin(), this->TryR.begin() + static_cast<std::ptrdiff_t>(n), r);
 }
 }

@@ -209,8 +209,8 @@ void TupleProblem::Summarize(const int* algorithms, const double* r, Solution& s
   }
 }
 
-bool TupleProblem::FindValueOrderViolation(
-  const int* algorithms, std::size_t& dropped, std::size_t& drawn) const
+bool TupleProblem::FindValueOrderViolation(const int* algorithms, std::size_t& dropped,
+  std::size_t& drawn, ValueOrderScratch& scratch) const
 {
   if (!this->DropDegradation)
   {
@@ -218,10 +218,13 @@ bool TupleProblem::FindValueOrderViolation(
   }
   // Drawn objects by value, with the costliest (at its cheapest tuple) of
   // each prefix: a dropped object is out of order when a less valuable drawn
-  // one costs more.
+  // one costs more. The arrays keep their capacity from call to call.
   const std::size_t n = this->Count;
-  std::vector<double> cheapest(n);
-  std::vector<std::size_t> order, costliest;
+  std::vector<double>& cheapest = scratch.Cheapest;
+  std::vector<std::size_t>& order = scratch.Order;
+  std::vector<std::size_t>& costliest = scratch.Costliest;
+  cheapest.resize(n);
+  order.clear();
   for (std::size_t j = 0; j < n; ++j)
   {
     cheapest[j] = this->Cost(j, this->CheapestAlgorithm(j), 0.0);

@@ -5,6 +5,7 @@
 #include "TimeCriticalBudgetCoreExport.h"
 
 #include <cstddef>
+#include <vector>
 
 namespace timecritical
 {
@@ -92,13 +93,21 @@ struct TIMECRITICALBUDGETCORE_EXPORT TupleProblem
   /// Whether the levels below the coarsest mesh are in play: AllowDrop and the
   /// cheapest drawn tuples exceed the budget.
   bool NeedsDropping() const;
+  /// Working arrays of FindValueOrderViolation(), held by the solver and
+  /// reused: no allocation once they have grown to the object count.
+  struct ValueOrderScratch
+  {
+    std::vector<double> Cheapest;
+    std::vector<std::size_t> Order, Costliest;
+  };
   /**
    * The value order of dropping: finds an object not drawn (dropped) while a
    * less valuable one (smaller DropDegradation: less to lose) whose
    * cheapest tuple costs more is drawn with a mesh (drawn); false when there
-   * is none. O(n log n); allocates.
+   * is none. O(n log n); allocates only when scratch grows.
    */
-  bool FindValueOrderViolation(const int* algorithms, std::size_t& dropped, std::size_t& drawn) const;
+  bool FindValueOrderViolation(const int* algorithms, std::size_t& dropped, std::size_t& drawn,
+    ValueOrderScratch& scratch) const;
   /// Fill in Objective, Cost, Boxed, Dropped of s from a choice.
   void Summarize(const int* algorithms, const double* r, Solution& s) const;
 };

@@ -91,8 +91,16 @@ std::string TimeCriticalStatisticsText::Format(vtkTimeCriticalRenderer* renderer
   {
     text << " (" << 100.0 * static_cast<double>(drawn) / static_cast<double>(total) << "%)";
   }
-  text << "\nObjects: " << WithThousands(objects - renderer->GetNumberOfCulledObjects())
-       << " drawn, " << WithThousands(renderer->GetNumberOfCulledObjects()) << " culled\n";
+  // Dropped: left out of an overloaded frame (vtkTimeCriticalRenderer::
+  // SetDropObjectsWhenOverloaded), named only when there are any.
+  const vtkIdType culled = renderer->GetNumberOfCulledObjects();
+  const vtkIdType dropped = renderer->GetNumberOfDroppedObjects();
+  text << "\nObjects: " << WithThousands(objects - culled - dropped) << " drawn, ";
+  if (dropped > 0)
+  {
+    text << WithThousands(dropped) << " dropped, ";
+  }
+  text << WithThousands(culled) << " culled\n";
   text << std::setprecision(2) << "Optimizer: " << renderer->GetOptimizationTime() * 1000.0
        << " ms, " << renderer->GetOptimizationIterations() << " iterations";
   WriteRankSummary(renderer, text);

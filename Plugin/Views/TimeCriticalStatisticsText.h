@@ -14,7 +14,7 @@ class vtkTimeCriticalRenderer;
 /**
  * The statistics overlay of the Time-Critical Render View: formats the last
  * frame's figures of a vtkTimeCriticalRenderer (target, prediction,
- * measurement, triangles, objects, optimizer, and the slowest rank when
+ * measurement, triangles, objects drawn, dropped and culled, optimizer, and the slowest rank when
  * several rendered) into the text the view shows and a server sends its
  * clients (vtkPVTimeCriticalStatisticsInformation). Both read it from the
  * renderer, so neither needs the other.

@@ -278,6 +278,8 @@ TIMECRITICAL_FORWARD(SetPolicy, int, renderer->SetPolicy(value))
 TIMECRITICAL_FORWARD(SetDegradationFamily, int, renderer->SetDegradationFamily(value))
 TIMECRITICAL_FORWARD(SetUseVelocity, bool, renderer->SetUseVelocity(value))
 TIMECRITICAL_FORWARD(SetUseEccentricity, bool, renderer->SetUseEccentricity(value))
+TIMECRITICAL_FORWARD(SetDropObjectsWhenOverloaded, bool,
+  renderer->SetDropObjectsWhenOverloaded(value))
 TIMECRITICAL_FORWARD(SetViewDependentRefinement, bool, renderer->SetViewDependentRefinement(value))
 TIMECRITICAL_FORWARD(SetRefinementMode, int, renderer->SetRefinementMode(value))
 TIMECRITICAL_FORWARD(SetPixelThreshold, double, renderer->SetPixelThreshold(value))
@@ -322,6 +324,12 @@ bool vtkPVTimeCriticalRenderView::GetUseEccentricity()
 {
   vtkTimeCriticalRenderer* renderer = this->GetTimeCriticalRenderer();
   return renderer && renderer->GetUseEccentricity();
+}
+
+bool vtkPVTimeCriticalRenderView::GetDropObjectsWhenOverloaded()
+{
+  vtkTimeCriticalRenderer* renderer = this->GetTimeCriticalRenderer();
+  return renderer && renderer->GetDropObjectsWhenOverloaded();
 }
 
 //------------------------------------------------------------------------------

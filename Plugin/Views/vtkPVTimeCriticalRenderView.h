@@ -86,6 +86,9 @@ public:
   bool GetUseVelocity();
   void SetUseEccentricity(bool on);
   bool GetUseEccentricity();
+  /// Leave the least valuable objects out when even their coarsest levels do not fit (default on).
+  void SetDropObjectsWhenOverloaded(bool on);
+  bool GetDropObjectsWhenOverloaded();
   ///@}
 
   ///@{

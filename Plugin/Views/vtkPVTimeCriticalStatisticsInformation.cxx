@@ -21,9 +21,10 @@ void vtkPVTimeCriticalStatisticsInformation::CopyFromObject(vtkObject* object)
   // The view's own text (vtkPVTimeCriticalRenderView::GetLocalStatisticsText()),
   // read from its renderer so that this class needs no view.
   auto* view = vtkPVRenderView::SafeDownCast(object);
-  this->Text = view && view->IsA("vtkPVTimeCriticalRenderView")
-    ? TimeCriticalStatisticsText::Format(vtkTimeCriticalRenderer::SafeDownCast(view->GetRenderer()))
-    : std::string();
+  const bool ours = view && view->IsA("vtkPVTimeCriticalRenderView");
+  auto* renderer = ours ? vtkTimeCriticalRenderer::SafeDownCast(view->GetRenderer()) : nullptr;
+  this->Text = ours ? TimeCriticalStatisticsText::Format(renderer) : std::string();
+  this->NumberOfDroppedObjects = renderer ? renderer->GetNumberOfDroppedObjects() : 0;
 }
 
 void vtkPVTimeCriticalStatisticsInformation::AddInformation(vtkPVInformation* other)
@@ -32,23 +33,29 @@ void vtkPVTimeCriticalStatisticsInformation::AddInformation(vtkPVInformation* ot
   if (statistics && this->Text.empty())
   {
     this->Text = statistics->Text;
+    this->NumberOfDroppedObjects = statistics->NumberOfDroppedObjects;
   }
 }
 
 void vtkPVTimeCriticalStatisticsInformation::CopyToStream(vtkClientServerStream* stream)
 {
   stream->Reset();
-  *stream << vtkClientServerStream::Reply << this->Text.c_str() << vtkClientServerStream::End;
+  *stream << vtkClientServerStream::Reply << this->Text.c_str()
+          << static_cast<vtkTypeInt64>(this->NumberOfDroppedObjects) << vtkClientServerStream::End;
 }
 
 void vtkPVTimeCriticalStatisticsInformation::CopyFromStream(const vtkClientServerStream* stream)
 {
   const char* text = nullptr;
   this->Text = stream->GetArgument(0, 0, &text) && text ? text : "";
+  vtkTypeInt64 dropped = 0;
+  this->NumberOfDroppedObjects =
+    stream->GetArgument(0, 1, &dropped) ? static_cast<vtkIdType>(dropped) : 0;
 }
 
 void vtkPVTimeCriticalStatisticsInformation::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "Text: " << this->Text << "\n";
+  os << indent << "NumberOfDroppedObjects: " << this->NumberOfDroppedObjects << "\n";
 }

@@ -6,8 +6,8 @@
  * In client-server mode the time-critical renderer that plans the frames is
  * the server's: the client's view gathers this information after each
  * render in which ShowStatistics is on, to show the server's figures in its
- * overlay. With several server ranks the text is rank 0's, which already
- * holds the slowest rank's time.
+ * overlay, and the number of objects that frame dropped. With several server
+ * ranks they are rank 0's, whose text already holds the slowest rank's time.
  *
  * @sa vtkPVTimeCriticalRenderView
  */
@@ -35,6 +35,8 @@ public:
 
   /// The statistics text (empty when none was gathered).
   const char* GetText() const { return this->Text.c_str(); }
+  /// Objects the last frame left out because it was overloaded (0 when none was gathered).
+  vtkIdType GetNumberOfDroppedObjects() const { return this->NumberOfDroppedObjects; }
 
 protected:
   vtkPVTimeCriticalStatisticsInformation();
@@ -45,6 +47,7 @@ private:
   void operator=(const vtkPVTimeCriticalStatisticsInformation&) = delete;
 
   std::string Text;
+  vtkIdType NumberOfDroppedObjects = 0;
 };
 
 #endif

@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 # SPDX-License-Identifier: BSD-3-Clause
 """The Time-Critical Render View of the ParaView plugin in whole sessions,
-through paraview.simple: a state file saved and loaded. The view's and the
+through paraview.simple: a state file saved and loaded, with the view's
+settings (DropObjectsWhenOverloaded among them). The view's and the
 representations' own tests are in Testing/Plugin/Views/Test<Class>.py.
 
 Runs under pvbatch (`pvbatch --force-offscreen-rendering TestTimeCriticalView.py`).
@@ -52,6 +53,32 @@ class TimeCriticalViewTests(ViewTests, unittest.TestCase):
         self.assertEqual(len(reps), 1)
         Render(restored)
         self.assertEqual(restored.GetClientSideObject().GetRenderer().GetNumberOfObjects(), 1)
+
+    def test_drop_objects_when_overloaded_round_trips(self):
+        view = self.view()
+        renderer = view.GetClientSideObject().GetRenderer()
+        self.assertEqual(view.DropObjectsWhenOverloaded, 1)  # on by default
+        self.assertTrue(renderer.GetDropObjectsWhenOverloaded())
+        view.DropObjectsWhenOverloaded = 0
+        source = self.new(sphere(30))
+        self.new(Show(source, view))
+        Render(view)
+        self.assertFalse(renderer.GetDropObjectsWhenOverloaded())  # forwarded to the renderer
+        state = os.path.join(OUT, "drop.pvsm")
+        SaveState(state)
+        ResetSession()
+        self.created = []
+        LoadState(state)
+        views = [v for v in GetViews() if v.GetXMLName() == "TimeCriticalRenderView"]
+        self.assertEqual(len(views), 1)
+        restored = views[0]
+        self.created.append(restored)
+        self.assertEqual(restored.DropObjectsWhenOverloaded, 0)
+        restored_renderer = restored.GetClientSideObject().GetRenderer()
+        self.assertFalse(restored_renderer.GetDropObjectsWhenOverloaded())
+        restored.DropObjectsWhenOverloaded = 1
+        Render(restored)
+        self.assertTrue(restored_renderer.GetDropObjectsWhenOverloaded())
 
 
 if __name__ == "__main__":

@@ -5,6 +5,7 @@
 // frames draw everything, bad input throws, GreedyLODPolicy forwards to it.
 #include "TupleTestProblem.h"
 
+#include "AllocationCounter.h"
 #include "GreedyLODPolicy.h"
 #include "GreedyTupleSelector.h"
 
@@ -138,6 +139,36 @@ TEST(GreedyTupleSelector, DroppingKeepsTheMostValuableObjects)
         ADD_FAILURE() << "object " << i << " dropped, " << j << " drawn";
       }
     }
+  }
+}
+
+TEST(GreedyTupleSelector, SolvesAgainWithoutAllocatingAndAnswersTheSame)
+{
+  // The renderer's frame path with the greedy policy: once its buffers have
+  // grown, a solve allocates nothing (the value order's scratch is a
+  // member), and a reused selector answers as a fresh one.
+  for (const std::size_t n : { std::size_t(12), std::size_t(5000) })
+  {
+    auto owned = MakeRandomTupleProblem(n, 1, 900 + static_cast<unsigned>(n), -0.66, true);
+    owned.WithBox = false;
+    const TupleProblem p = owned.View();
+    std::vector<int> a(n), fresh(n);
+    std::vector<double> r(n), freshR(n);
+    GreedyTupleSelector reused;
+    reused.Solve(p, a.data(), r.data());
+    const std::size_t before = timecritical::testing::GetAllocationCount();
+    const auto s = reused.Solve(p, a.data(), r.data());
+    EXPECT_EQ(timecritical::testing::GetAllocationCount(), before) << n << " objects";
+    GreedyTupleSelector other;
+    other.Solve(p, fresh.data(), freshR.data());
+    EXPECT_EQ(a, fresh);
+    EXPECT_EQ(r, freshR);
+    EXPECT_TRUE(s.Dropping);
+    EXPECT_GT(s.Dropped, 0u);
+    EXPECT_LE(s.Cost, p.Budget * (1.0 + 1e-9));
+    TupleProblem::ValueOrderScratch scratch;
+    std::size_t i = n, j = n;
+    EXPECT_FALSE(p.FindValueOrderViolation(a.data(), i, j, scratch)) << i << " dropped, " << j << " drawn";
   }
 }
 

@@ -7,6 +7,7 @@
 #include "TupleTestProblem.h"
 
 #include "ActiveSetPolicy.h"
+#include "AllocationCounter.h"
 #include "GreedyTupleSelector.h"
 #include "ReferenceResolutionSolver.h"
 #include "TupleOptimizer.h"
@@ -220,6 +221,44 @@ TEST(TupleOptimizer, NeverDropsAnObjectThatDominatesADrawnOne)
           ADD_FAILURE() << "seed " << seed << ": object " << i << " dropped, " << j << " drawn";
         }
       }
+    }
+  }
+}
+
+TEST(TupleOptimizer, SolvesAgainWithoutAllocatingAndAnswersTheSame)
+{
+  // The renderer's frame path: once its buffers have grown, a solve allocates
+  // nothing (the local search's pair options and the value order's scratch
+  // are members), and a reused optimizer answers as a fresh one. Sizes with
+  // pair moves (12), the local search (500) and neither (5000); one
+  // algorithm without a box (the renderer's) and four with the box.
+  for (const std::size_t n : { std::size_t(12), std::size_t(500), std::size_t(5000) })
+  {
+    for (const std::size_t algorithms : { std::size_t(1), std::size_t(4) })
+    {
+      auto owned = MakeRandomTupleProblem(n, algorithms, 700 + static_cast<unsigned>(n), -0.66, true);
+      owned.WithBox = algorithms > 1;
+      const TupleProblem p = owned.View();
+      std::vector<int> a(n), fresh(n);
+      std::vector<double> r(n), freshR(n);
+      TupleOptimizer reused;
+      reused.Solve(p, a.data(), r.data()); // grows the buffers
+      const std::size_t before = timecritical::testing::GetAllocationCount();
+      const auto s = reused.Solve(p, a.data(), r.data());
+      EXPECT_EQ(timecritical::testing::GetAllocationCount(), before) << n << " objects";
+      TupleOptimizer other;
+      const auto t = other.Solve(p, fresh.data(), freshR.data());
+      EXPECT_EQ(a, fresh) << n << " objects";
+      EXPECT_EQ(r, freshR) << n << " objects";
+      EXPECT_EQ(s.Objective, t.Objective);
+      EXPECT_TRUE(s.Dropping);
+      EXPECT_GT(s.Dropped, 0u);
+      EXPECT_LE(s.Cost, p.Budget * (1.0 + 1e-9));
+      // The value order holds in the answer.
+      TupleProblem::ValueOrderScratch scratch;
+      std::size_t i = n, j = n;
+      EXPECT_FALSE(p.FindValueOrderViolation(a.data(), i, j, scratch))
+        << n << " objects: " << i << " dropped, " << j << " drawn";
     }
   }
 }

@@ -4,6 +4,7 @@
 // validation of bad input (each case a clear std::invalid_argument).
 #include "TupleProblem.h"
 
+#include "AllocationCounter.h"
 #include "ResolutionProblem.h"
 
 #include <gtest/gtest.h>
@@ -100,6 +101,50 @@ TEST(TupleProblem, CheapestDroppingAndSummary)
   EXPECT_EQ(sum.Boxed, 0u);
   EXPECT_DOUBLE_EQ(sum.Objective, 10.0 + 2.0);
   EXPECT_DOUBLE_EQ(sum.Cost, 0.001 + 0.015);
+}
+
+TEST(TupleProblem, ValueOrderViolationsWithReusedScratch)
+{
+  // Five objects, one algorithm: cheapest cost MaxTime * Lo, value DropDegradation.
+  const std::vector<double> alpha = { 1.0 }, weight(5, 1.0), lo(5, 0.1);
+  const std::vector<double> maxTime = { 0.01, 0.02, 0.03, 0.04, 0.05 };
+  const std::vector<double> value = { 5.0, 4.0, 3.0, 2.0, 1.0 };
+  TupleProblem p;
+  p.Count = 5;
+  p.AlgorithmCount = 1;
+  p.Alpha = alpha.data();
+  p.Weight = weight.data();
+  p.MaxTime = maxTime.data();
+  p.MinResolution = lo.data();
+  p.DropDegradation = value.data();
+  p.AllowDrop = true;
+  p.Budget = 0.005;
+  TupleProblem::ValueOrderScratch scratch;
+  std::size_t dropped = 99, drawn = 99;
+  // Object 1 (value 4, cost 0.002) dropped while object 4 (value 1, cost 0.005) is drawn.
+  const int bad[5] = { 0, TupleProblem::NotDrawn, TupleProblem::NotDrawn, TupleProblem::NotDrawn, 0 };
+  ASSERT_TRUE(p.FindValueOrderViolation(bad, dropped, drawn, scratch));
+  EXPECT_EQ(dropped, 1u);
+  EXPECT_EQ(drawn, 4u);
+  // The most valuable drawn, the rest dropped: in order.
+  const int good[5] = { 0, 0, TupleProblem::NotDrawn, TupleProblem::NotDrawn, TupleProblem::NotDrawn };
+  EXPECT_FALSE(p.FindValueOrderViolation(good, dropped, drawn, scratch));
+  // A less valuable drawn object that costs less is no violation.
+  const int cheaper[5] = { TupleProblem::NotDrawn, 0, 0, 0, 0 };
+  const std::vector<double> rising = { 0.05, 0.04, 0.03, 0.02, 0.01 };
+  p.MaxTime = rising.data();
+  EXPECT_FALSE(p.FindValueOrderViolation(cheaper, dropped, drawn, scratch));
+  // The scratch has grown: the same questions again allocate nothing and answer the same.
+  p.MaxTime = maxTime.data();
+  const std::size_t before = timecritical::testing::GetAllocationCount();
+  const bool again = p.FindValueOrderViolation(bad, dropped, drawn, scratch);
+  const bool none = p.FindValueOrderViolation(good, dropped, drawn, scratch);
+  EXPECT_EQ(timecritical::testing::GetAllocationCount(), before);
+  EXPECT_TRUE(again);
+  EXPECT_FALSE(none);
+  // Without drop degradations there is no value order to violate.
+  p.DropDegradation = nullptr;
+  EXPECT_FALSE(p.FindValueOrderViolation(bad, dropped, drawn, scratch));
 }
 
 TEST(TupleProblem, BadInputThrowsClearly)

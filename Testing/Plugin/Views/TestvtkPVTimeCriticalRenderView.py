@@ -52,6 +52,7 @@ class vtkPVTimeCriticalRenderViewTests(ViewTests, unittest.TestCase):
         self.assertEqual(view.DegradationModel, "Hitchner")
         self.assertEqual(view.FullResolutionAtRest, 1)
         self.assertEqual(view.ShowStatistics, 0)
+        self.assertEqual(view.DropObjectsWhenOverloaded, 1)
         view.TargetFrameTime = 40
         view.OptimizationTimeLimit = 0.5
         view.Policy = "Greedy LOD"
@@ -59,6 +60,7 @@ class vtkPVTimeCriticalRenderViewTests(ViewTests, unittest.TestCase):
         view.UseVelocity = 0
         view.RefinementTimeLimit = 5
         view.PixelThreshold = 2.5
+        view.DropObjectsWhenOverloaded = 0
         renderer = view.GetClientSideObject().GetRenderer()
         self.assertAlmostEqual(renderer.GetTargetFrameTime(), 0.040)
         self.assertAlmostEqual(renderer.GetOptimizationTimeLimit(), 0.0005)
@@ -67,6 +69,8 @@ class vtkPVTimeCriticalRenderViewTests(ViewTests, unittest.TestCase):
         self.assertFalse(renderer.GetUseVelocity())
         self.assertAlmostEqual(renderer.GetRefinementTimeLimit(), 0.005)
         self.assertAlmostEqual(renderer.GetPixelThreshold(), 2.5)
+        self.assertFalse(renderer.GetDropObjectsWhenOverloaded())
+        self.assertFalse(view.GetClientSideObject().GetDropObjectsWhenOverloaded())
         # ParaView's LOD never switches on in this view.
         view.LODThreshold = 0.0
         self.assertGreater(view.GetClientSideObject().GetLODRenderingThreshold(), 1e300)
@@ -222,7 +226,9 @@ class vtkPVTimeCriticalRenderViewTests(ViewTests, unittest.TestCase):
         self.assertEqual(got, expected)
 
     def test_color_by_resolution(self):
-        view = self.view(TargetFrameTime=5, FullResolutionAtRest=0)
+        # A target the sphere's coarsest level may exceed: drawn coarse, not
+        # dropped (the map needs the object on screen).
+        view = self.view(TargetFrameTime=5, FullResolutionAtRest=0, DropObjectsWhenOverloaded=0)
         source = self.new(sphere(300))
         self.new(Show(source, view))
         view.ResetCamera()

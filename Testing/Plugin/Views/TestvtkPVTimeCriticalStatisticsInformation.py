@@ -2,8 +2,8 @@
 # SPDX-License-Identifier: BSD-3-Clause
 """vtkPVTimeCriticalStatisticsInformation, the statistics of a
 vtkPVTimeCriticalRenderView gathered for the client: what it copies from a
-view (and from anything else), which text it keeps when ranks' information is
-added, and the same text gathered through the session. The client-server
+view (and from anything else), the objects an overloaded frame dropped,
+which text it keeps when ranks' information is added, and the same text gathered through the session. The client-server
 transfer (CopyToStream, CopyFromStream) is exercised by
 Testing/Python/TestTimeCriticalViewClientServer.py.
 
@@ -65,6 +65,46 @@ class PVTimeCriticalStatisticsInformationTests(ViewTests, unittest.TestCase):
         info.CopyFromObject(server)
         info.CopyFromObject(None)
         self.assertEqual(info.GetText(), "")
+
+    def test_counts_the_objects_an_overloaded_frame_dropped(self):
+        # Six spheres in view, each one object; ten milliseconds per triangle
+        # make even their coarsest levels cost several times the 100 ms target.
+        view = self.view(ShowStatistics=1, TargetFrameTime=100)
+        spheres = [self.new(sphere(16 + 4 * i, center=(3 * i, 0, 0))) for i in range(6)]
+        group = self.new(GroupDatasets(Input=spheres))
+        self.new(Show(group, view))
+        view.ResetCamera()
+        server = view.GetClientSideObject()
+        renderer = server.GetRenderer()
+        renderer.AutomaticCalibrationOff()
+        renderer.OnlineCalibrationOff()
+        renderer.SetCostCoefficients(0.002, 0.0, 1e-2, 0.0)
+        renderer.SetNewObjectCostFactor(1.0)
+        view.InteractiveRender()
+        view.InteractiveRender()
+        self.assertEqual(renderer.GetNumberOfObjects(), 6)
+        dropped = renderer.GetNumberOfDroppedObjects()
+        self.assertGreater(dropped, 0)
+        self.assertLess(dropped, 6)
+        self.assertLessEqual(renderer.GetPredictedFrameTime(), 0.100 * (1 + 1e-9))
+        info = statistics_information()
+        self.assertEqual(info.GetNumberOfDroppedObjects(), 0)
+        info.CopyFromObject(server)
+        self.assertEqual(info.GetNumberOfDroppedObjects(), dropped)
+        self.assertIn("Objects: %d drawn, %d dropped, 0 culled" % (6 - dropped, dropped),
+                      info.GetText())
+        # Added information keeps the first one's count with its text.
+        gathered = statistics_information()
+        gathered.AddInformation(info)
+        self.assertEqual(gathered.GetNumberOfDroppedObjects(), dropped)
+        # The setting off: nothing dropped, the text as before.
+        view.DropObjectsWhenOverloaded = 0
+        view.InteractiveRender()
+        info.CopyFromObject(server)
+        self.assertEqual(info.GetNumberOfDroppedObjects(), 0)
+        self.assertIn("Objects: 6 drawn, 0 culled", info.GetText())
+        info.CopyFromObject(None)
+        self.assertEqual(info.GetNumberOfDroppedObjects(), 0)
 
     def test_adding_keeps_the_first_text(self):
         first = statistics_information()
