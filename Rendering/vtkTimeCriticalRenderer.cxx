@@ -623,15 +623,24 @@ void vtkTimeCriticalRenderer::DeviceRender()
              [](double coarsest) { return !(coarsest < 1.0); }) &&
       this->GetNumberOfPendingHierarchies() > 0;
   };
-  if (in.CalibrationRequested ||
-    (this->AutomaticCalibration && !this->Calibrated && !this->CalibrationAttempted &&
-      this->Policy != FULL_RESOLUTION && !in.ObjectActor.empty() && !awaitingHierarchies()))
+  // When it was held back so, it is spread over the interactive frames that
+  // follow (the user may be dragging), each planning its samples' time as fixed.
+  in.CalibrationFrameTime = 0.0;
+  const bool automatic = this->AutomaticCalibration && !this->Calibrated &&
+    !this->CalibrationAttempted && this->Policy != FULL_RESOLUTION && !in.ObjectActor.empty();
+  if (in.Calibration.Active || in.CalibrationRequested || (automatic && !awaitingHierarchies()))
   {
-    const bool automatic = !in.CalibrationRequested;
+    const bool spread = !still && !in.CalibrationRequested &&
+      (in.Calibration.Active ? in.Calibration.Spread : in.CalibrationHeldBack);
+    in.Calibration.Automatic = in.Calibration.Active ? in.Calibration.Automatic : !in.CalibrationRequested;
     in.CalibrationRequested = false;
-    this->RunCalibration();
+    this->RunCalibration(spread);
     in.PendingCalibrated = true;
-    in.CalibrationProvisional = automatic && this->Calibrated && !in.CameraWasReset;
+    in.CalibrationFrameTime = spread ? in.Calibration.FrameSeconds : 0.0;
+  }
+  else if (automatic)
+  {
+    in.CalibrationHeldBack = true;
   }
   this->MeasureObjects();
   this->HeuristicsTime = Seconds(heuristicsStart, Clock::now());
@@ -914,7 +923,8 @@ void vtkTimeCriticalRenderer::ChooseResolutions(bool still)
   timecritical::FrameCostModel::FrameLoad load = in.Load;
   load.DrawCalls += mapperCalls;
   const double fixed = correction * (in.Model.FixedTime(load, in.TotalPixels) + fixedFronts) +
-    in.RefinementEstimate + this->CompositingTime + in.DataChangeEstimate;
+    in.RefinementEstimate + this->CompositingTime + in.DataChangeEstimate +
+    in.CalibrationFrameTime;
   // Time-limited budget fronts: at most the limit per mapper this frame.
   for (const auto& entry : in.Actors)
   {

@@ -279,9 +279,13 @@ public:
   /**
    * Cost model calibration. AutomaticCalibration (default on) runs
    * Calibrate()'s renders in the first render with objects, still or not
-   * (unless the policy is FULL_RESOLUTION; with background hierarchy builds,
-   * the first in which not every object still waits for its hierarchy), so that no interactive frame
-   * pays for it; OnlineCalibration (default on) refines the coefficients
+   * (unless the policy is FULL_RESOLUTION), so that no interactive frame
+   * pays for it. With background hierarchy builds it waits for the first
+   * render in which not every object still waits for its hierarchy; that
+   * render may come while the user drags, so the samples are then spread
+   * over the interactive frames (at most two single renders per frame, sized
+   * to 40% of the target, planned as fixed time; a still frame runs the
+   * rest). OnlineCalibration (default on) refines the coefficients
    * from every measured frame, within lower bounds (see the class comment).
    * Turn both off and set the coefficients for deterministic resolutions
    * (tests).
@@ -551,7 +555,10 @@ private:
   double PrepareDropping(bool still, double correction);
   double PlanningMargin(double target, double fixed, double objectFixed, bool still);
   bool ChooseWithDropping(double target, double fixed, double objectFixed);
-  void RunCalibration();
+  void RunCalibration(bool spread);
+  void CalibrationStep(double savedAngle, double savedScale);
+  double CalibrationSample(double r, int renders, bool record = true);
+  void FinishCalibration();
   double MeasureDataChange(); ///< seconds of the pending frame's reads and vertex buffer builds
   void FinishFrame();
 

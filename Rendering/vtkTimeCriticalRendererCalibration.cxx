@@ -65,134 +65,174 @@ void vtkTimeCriticalRenderer::ScaleDefaultCoefficients(double measured)
 // noise only adds). About 12 targets' worth of rendering in all plus the
 // first upload of the vertex data, which the first frame pays anyway; never
 // more than CalibrationTimeLimit targets.
+//
+// Spread: when the calibration starts in an interactive frame after frames
+// were drawn (background builds held it back until a hierarchy arrived, while
+// the user may be dragging), the same plan runs a few samples per frame,
+// sized to SpreadShare of the target and rendered once each, at most
+// SpreadRenders per frame; the frame plans the time they took as fixed. No frame stalls; the fit comes after about 14
+// frames, which the online refinement bridges.
 
 namespace
 {
 constexpr double CalibrationTimeLimit = 30.0; // in targets
+constexpr double SpreadShare = 0.4;           // of the target, per spread frame
+constexpr int SpreadRenders = 2;              // at most, per spread frame
+constexpr double Zooms[] = { 1.0, 0.7, 1.8 };
+constexpr double Fractions[] = { 1.0, 0.5, 0.2, 0.0 };
+// Steps: 0 the coarsest levels at the first zoom, 1 the probe at a quarter
+// of what the target affords, then 2 + 4 z + f for zoom z and fraction f.
+constexpr std::size_t StepCount = 2 + 3 * 4;
 }
 
-void vtkTimeCriticalRenderer::RunCalibration()
+void vtkTimeCriticalRenderer::RunCalibration(bool spread)
 {
   Internals& in = *this->Internal;
-  const auto calibrationStart = Clock::now();
-  this->CalibrationAttempted = true;
+  auto& run = in.Calibration;
+  const auto start = Clock::now();
+  if (!run.Active)
+  {
+    const bool automatic = run.Automatic;
+    run = Internals::CalibrationRun();
+    run.Active = true;
+    run.Automatic = automatic;
+    run.Spread = spread;
+    this->CalibrationAttempted = true;
+    // With UseDesiredUpdateRate the interactive target is not known in a still
+    // frame; the setting is then the yardstick (and covers faster targets).
+    run.Sizing = std::isfinite(in.EffectiveTarget)
+      ? std::max(in.EffectiveTarget, this->TargetFrameTime)
+      : this->TargetFrameTime;
+    if (spread)
+    {
+      run.Sizing *= SpreadShare;
+    }
+    run.TriangleCost = std::max(in.Model.GetCoefficients().Triangle, 1e-12);
+  }
+  run.Spread = run.Spread && spread; // a still frame finishes a spread run
   vtkCamera* camera = this->GetActiveCamera();
   const double savedAngle = camera->GetViewAngle();
   const double savedScale = camera->GetParallelScale();
-  // With UseDesiredUpdateRate the interactive target is not known in a still
-  // frame; the setting is then the yardstick (and covers faster targets).
-  const double sizing = std::isfinite(in.EffectiveTarget)
-    ? std::max(in.EffectiveTarget, this->TargetFrameTime)
-    : this->TargetFrameTime;
-  const double deadline = CalibrationTimeLimit * sizing;
-  // Zooming out and in varies the objects in view and their coverage, so that
-  // the fixed, per-object and fill terms can be told apart from the triangles.
-  const double zooms[] = { 1.0, 0.7, 1.8 };
-  const double fractions[] = { 1.0, 0.5, 0.2, 0.0 };
-  constexpr std::size_t MaxSamples = 2 + 3 * 4;
-  double x[MaxSamples * FeatureCount];
-  double times[MaxSamples];
-  std::size_t samples = 0;
-  int renders = 0;
-
-  auto visibleTriangles = [&]() {
-    double total = 0.0;
-    for (std::size_t o = 0; o < in.ObjectActor.size(); ++o)
-    {
-      total += in.Culled[o] ? 0.0 : in.MaxTriangles[o];
-    }
-    return total;
-  };
-  auto setResolution = [&](double r) {
-    for (std::size_t o = 0; o < in.ObjectActor.size(); ++o)
-    {
-      in.Resolution[o] = in.Culled[o] ? 0.0 : std::max(r, 1e-9);
-    }
-    in.ApplyResolutions();
-  };
-  auto render = [&]() {
-    const auto start = Clock::now();
-    this->Superclass::DeviceRender();
-    glFinish();
-    ++renders;
-    return Seconds(start, Clock::now());
-  };
-  // One sample: the faster of two renders, features from the second.
-  auto sample = [&](double r) {
-    setResolution(r);
-    const double t = std::min(render(), render());
-    this->FinishFrame();
-    times[samples] = t;
-    std::copy(in.Features.begin(), in.Features.end(), x + samples * FeatureCount);
-    ++samples;
-    return t;
-  };
-  auto zoomTo = [&](double zoom) {
-    camera->SetViewAngle(savedAngle);
-    camera->SetParallelScale(savedScale);
-    camera->Zoom(zoom);
-    this->MeasureObjects();
-  };
-
-  // Probe at the first zoom: the coarsest levels (after an untimed render
-  // that uploads the vertex data), then a quarter of what the current
-  // per-triangle cost says the target affords.
-  zoomTo(zooms[0]);
-  double visible = visibleTriangles();
-  double triangleCost = std::max(in.Model.GetCoefficients().Triangle, 1e-12);
-  if (visible > 0.0)
+  const double deadline = CalibrationTimeLimit * run.Sizing;
+  const int rendersBefore = run.Renders;
+  while (run.Step < StepCount)
   {
-    setResolution(0.0);
-    render();
-    const double coarseTime = sample(0.0);
-    const double coarseTriangles = in.Features[timecritical::FrameCostModel::FeatureTriangles];
-    const double probe = std::min(1.0, 0.25 * sizing / triangleCost / visible);
-    const double probeTime = sample(probe);
-    const double probeTriangles = in.Features[timecritical::FrameCostModel::FeatureTriangles];
-    const double slope = (probeTime - coarseTime) / (probeTriangles - coarseTriangles);
-    if (std::isfinite(slope) && slope > 0.0)
-    {
-      triangleCost = slope;
-    }
-  }
-  for (double zoom : zooms)
-  {
-    if (Seconds(calibrationStart, Clock::now()) > deadline)
+    const double elapsed = Seconds(start, Clock::now());
+    const int rendered = run.Renders - rendersBefore;
+    if ((!run.Spread && run.Seconds + elapsed > deadline) ||
+      (run.Spread && rendered > 0 &&
+        (rendered >= SpreadRenders || elapsed > 0.5 * run.Sizing)))
     {
       break;
     }
-    zoomTo(zoom);
-    visible = visibleTriangles();
-    if (!(visible > 0.0))
-    {
-      continue;
-    }
-    // What the target affords at the measured cost, largest first: every
-    // buffer grows once, in the first of its two renders.
-    const double largest = std::min(1.0, sizing / triangleCost / visible);
-    for (double fraction : fractions)
-    {
-      if (fraction == 0.0 && zoom == zooms[0])
-      {
-        continue; // the probe measured it
-      }
-      if (Seconds(calibrationStart, Clock::now()) > deadline)
-      {
-        break;
-      }
-      sample(fraction * largest);
-    }
+    this->CalibrationStep(savedAngle, savedScale);
   }
-  in.FramePending = false;
   camera->SetViewAngle(savedAngle);
   camera->SetParallelScale(savedScale);
-  if (samples == 0)
+  in.FramePending = false;
+  run.FrameSeconds = Seconds(start, Clock::now());
+  run.Seconds += run.FrameSeconds;
+  this->CalibrationTime = run.Seconds;
+  if (run.Step >= StepCount || !run.Spread)
+  {
+    this->FinishCalibration();
+  }
+}
+
+void vtkTimeCriticalRenderer::CalibrationStep(double savedAngle, double savedScale)
+{
+  Internals& in = *this->Internal;
+  auto& run = in.Calibration;
+  const std::size_t step = run.Step++;
+  const std::size_t zoom = step < 2 ? 0 : (step - 2) / 4;
+  const std::size_t fraction = step < 2 ? 0 : (step - 2) % 4;
+  if (step >= 2 && zoom == 0 && Fractions[fraction] == 0.0)
+  {
+    return; // step 0 measured it
+  }
+  vtkCamera* camera = this->GetActiveCamera();
+  camera->SetViewAngle(savedAngle);
+  camera->SetParallelScale(savedScale);
+  camera->Zoom(Zooms[zoom]);
+  this->MeasureObjects();
+  double visible = 0.0;
+  for (std::size_t o = 0; o < in.ObjectActor.size(); ++o)
+  {
+    visible += in.Culled[o] ? 0.0 : in.MaxTriangles[o];
+  }
+  if (!(visible > 0.0))
+  {
+    return;
+  }
+  if (step == 0)
+  {
+    if (!run.Spread)
+    {
+      this->CalibrationSample(0.0, 1, false); // uploads the vertex data
+    }
+    run.CoarseTime = this->CalibrationSample(0.0, run.Spread ? 1 : 2);
+    run.CoarseTriangles = in.Features[timecritical::FrameCostModel::FeatureTriangles];
+    return;
+  }
+  if (step == 1)
+  {
+    const double probe = std::min(1.0, 0.25 * run.Sizing / run.TriangleCost / visible);
+    const double probeTime = this->CalibrationSample(probe, run.Spread ? 1 : 2);
+    const double probeTriangles = in.Features[timecritical::FrameCostModel::FeatureTriangles];
+    const double slope = (probeTime - run.CoarseTime) / (probeTriangles - run.CoarseTriangles);
+    if (std::isfinite(slope) && slope > 0.0)
+    {
+      run.TriangleCost = slope;
+    }
+    return;
+  }
+  // What the target affords at the measured cost, largest first: every
+  // buffer grows once, in the first of its renders.
+  const double largest = std::min(1.0, run.Sizing / run.TriangleCost / visible);
+  this->CalibrationSample(Fractions[fraction] * largest, run.Spread ? 1 : 2);
+}
+
+double vtkTimeCriticalRenderer::CalibrationSample(double r, int renders, bool record)
+{
+  // One sample: the fastest of `renders` renders, features from the last
+  // (not recorded: a render that uploads the vertex data).
+  Internals& in = *this->Internal;
+  auto& run = in.Calibration;
+  for (std::size_t o = 0; o < in.ObjectActor.size(); ++o)
+  {
+    in.Resolution[o] = in.Culled[o] ? 0.0 : std::max(r, 1e-9);
+  }
+  in.ApplyResolutions();
+  double best = tcr::Infinity;
+  for (int k = 0; k < renders; ++k)
+  {
+    const auto start = Clock::now();
+    this->Superclass::DeviceRender();
+    glFinish();
+    ++run.Renders;
+    ++this->CalibrationRenders;
+    best = std::min(best, Seconds(start, Clock::now()));
+  }
+  this->FinishFrame();
+  if (record && run.Samples < Internals::CalibrationRun::MaxSamples)
+  {
+    run.Times[run.Samples] = best;
+    std::copy(in.Features.begin(), in.Features.end(), run.X + run.Samples * tcr::FeatureCount);
+    ++run.Samples;
+  }
+  return best;
+}
+
+void vtkTimeCriticalRenderer::FinishCalibration()
+{
+  Internals& in = *this->Internal;
+  auto& run = in.Calibration;
+  run.Active = false;
+  if (run.Samples == 0)
   {
     // Nothing in view at any zoom (a script's first render comes before its
     // camera is reset, for instance): try again in a later frame.
     this->CalibrationAttempted = false;
-    this->CalibrationRenders += renders;
-    this->CalibrationTime = Seconds(calibrationStart, Clock::now());
     return;
   }
   // The fixed per-frame work outside DeviceRender() (swap, window events) is
@@ -201,7 +241,7 @@ void vtkTimeCriticalRenderer::RunCalibration()
   // the later, relative floors come from.
   const auto previousFloors = in.Model.GetMinimumCoefficients();
   in.SetCoefficientFloors(false);
-  if (samples >= 3 && in.Calibrator.Calibrate(x, times, samples))
+  if (run.Samples >= 3 && in.Calibrator.Calibrate(run.X, run.Times, run.Samples))
   {
     in.StoreCoefficients();
     in.SetCoefficientFloors(true);
@@ -209,6 +249,7 @@ void vtkTimeCriticalRenderer::RunCalibration()
     in.StillCorrector.Reset();
     this->Calibrated = true;
     in.UsingDefaults = false;
+    in.CalibrationProvisional = run.Automatic && !in.CameraWasReset;
   }
   else
   {
@@ -216,6 +257,4 @@ void vtkTimeCriticalRenderer::RunCalibration()
     vtkWarningMacro("Cost model calibration found nothing to measure; keeping the current "
                     "coefficients");
   }
-  this->CalibrationRenders += renders;
-  this->CalibrationTime = Seconds(calibrationStart, Clock::now());
 }

@@ -142,6 +142,30 @@ struct vtkTimeCriticalRenderer::Internals
   bool FramePending = false; // this renderer drew in the window's current frame
   std::array<double, tcr::FeatureCount> Features{};
 
+  // The start-up calibration's samples (Calibration.cxx): all in one frame,
+  // or, when it starts in an interactive frame after frames were drawn
+  // (background builds delayed it), a few per frame.
+  struct CalibrationRun
+  {
+    static constexpr std::size_t MaxSamples = 2 + 3 * 4;
+    bool Active = false;
+    bool Spread = false;
+    bool Automatic = true; // not asked for by Calibrate()
+    std::size_t Step = 0; // next step of the plan (see CalibrationStep)
+    double Sizing = 0.0;  // the target the samples are sized to (s)
+    double TriangleCost = 0.0;
+    double CoarseTime = 0.0, CoarseTriangles = 0.0;
+    double X[MaxSamples * tcr::FeatureCount] = {};
+    double Times[MaxSamples] = {};
+    std::size_t Samples = 0;
+    int Renders = 0;
+    double Seconds = 0.0;      // spent in all frames so far
+    double FrameSeconds = 0.0; // spent in the current frame
+  };
+  CalibrationRun Calibration;
+  bool CalibrationHeldBack = false;  // the automatic calibration waited for a hierarchy
+  double CalibrationFrameTime = 0.0; // spread samples' seconds in the frame being planned
+
   bool StillRequested = false;
   bool CalibrationRequested = false;
   bool CameraWasReset = false;        // ResetCamera() ran at least once

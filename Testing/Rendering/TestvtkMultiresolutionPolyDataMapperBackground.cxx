@@ -476,3 +476,86 @@ TEST_F(MultiresolutionMapperBackground, BadSettingIsAnError)
   EXPECT_EQ(log.Errors.Count, 1);
 }
 }
+
+namespace
+{
+/// A time-critical renderer drawing `mapper`, whose builds a gate holds.
+struct CalibrationScene
+{
+  explicit CalibrationScene(vtkMultiresolutionPolyDataMapper* mapper)
+  {
+    this->Actor->SetMapper(mapper);
+    this->Renderer->AddActor(this->Actor);
+    this->Window->SetOffScreenRendering(1);
+    this->Window->SetMultiSamples(0);
+    this->Window->SetSize(200, 200);
+    this->Window->AddRenderer(this->Renderer);
+    this->Renderer->ResetCamera();
+  }
+  vtkNew<vtkRenderWindow> Window;
+  vtkNew<vtkTimeCriticalRenderer> Renderer;
+  vtkNew<vtkActor> Actor;
+};
+}
+
+TEST_F(MultiresolutionMapperBackground, CalibrationHeldBackByBuildsIsSpreadOverFrames)
+{
+  // The automatic calibration waits for a hierarchy; when one arrives the
+  // user may be dragging: its samples are spread over the interactive frames
+  // (a few single renders each, sized to a share of the target) instead of
+  // stalling one frame with all of them.
+  vtkNew<vtkMultiresolutionPolyDataMapper> mapper;
+  mapper->SetInputData(Surface());
+  mapper->BackgroundBuildsOn();
+  std::optional<Gate> gate(std::in_place, mapper);
+  CalibrationScene scene(mapper);
+  // A target far below one render: one sample per frame, whatever the machine.
+  scene.Renderer->SetTargetFrameTime(0.001);
+  scene.Window->Render();
+  scene.Window->Render();
+  EXPECT_FALSE(scene.Renderer->GetCalibrated());
+  EXPECT_EQ(scene.Renderer->GetCalibrationRenders(), 0) << "calibrated on a stand-in";
+
+  gate.reset(); // the build goes on and finishes
+  mapper->GetBuildQueue()->WaitAll();
+  int frames = 0;
+  int previous = 0;
+  for (; frames < 40 && !scene.Renderer->GetCalibrated(); ++frames)
+  {
+    scene.Window->Render();
+    const int renders = scene.Renderer->GetCalibrationRenders();
+    EXPECT_LE(renders - previous, 2) << "frame " << frames;
+    previous = renders;
+  }
+  EXPECT_TRUE(mapper->GetObjectIsTOM(0));
+  EXPECT_TRUE(scene.Renderer->GetCalibrated());
+  EXPECT_GE(frames, 6) << "the samples were not spread";
+  // One render per step (no upload render, no second render of a sample).
+  EXPECT_LE(scene.Renderer->GetCalibrationRenders(), 13);
+  EXPECT_GE(scene.Renderer->GetCalibrationRenders(), 8);
+  // Done: later frames render nothing hidden.
+  scene.Window->Render();
+  EXPECT_EQ(scene.Renderer->GetCalibrationRenders(), previous);
+}
+
+TEST_F(MultiresolutionMapperBackground, AStillFrameFinishesASpreadCalibration)
+{
+  vtkNew<vtkMultiresolutionPolyDataMapper> mapper;
+  mapper->SetInputData(Surface());
+  mapper->BackgroundBuildsOn();
+  std::optional<Gate> gate(std::in_place, mapper);
+  CalibrationScene scene(mapper);
+  scene.Renderer->SetTargetFrameTime(0.001);
+  scene.Window->Render();
+  gate.reset();
+  mapper->GetBuildQueue()->WaitAll();
+  scene.Window->Render();
+  scene.Window->Render();
+  ASSERT_FALSE(scene.Renderer->GetCalibrated());
+  ASSERT_GT(scene.Renderer->GetCalibrationRenders(), 0);
+  scene.Renderer->StillRender(); // the user waits for it anyway: the rest runs in it
+  EXPECT_TRUE(scene.Renderer->GetCalibrated());
+  const int renders = scene.Renderer->GetCalibrationRenders();
+  scene.Window->Render();
+  EXPECT_EQ(scene.Renderer->GetCalibrationRenders(), renders);
+}
