@@ -616,13 +616,11 @@ void vtkTimeCriticalRenderer::DeviceRender()
   // UseDesiredUpdateRate every frame before the first drag is a still frame;
   // waiting for an adaptive one would put the calibration's seconds into the
   // user's first interaction.
-  // With background hierarchy builds, objects that all still wait for their
-  // hierarchy have no resolution to vary: calibration waits for the first.
-  auto awaitingHierarchies = [this, &in]() {
-    return std::all_of(in.Coarsest.begin(), in.Coarsest.end(),
-             [](double coarsest) { return !(coarsest < 1.0); }) &&
-      this->GetNumberOfPendingHierarchies() > 0;
-  };
+  // With background hierarchy builds it waits until none is pending: objects
+  // drawn in full while their hierarchy builds have no resolution to vary,
+  // and their full cost in every hidden render would make each sample cost
+  // a frame or more.
+  auto awaitingHierarchies = [this]() { return this->GetNumberOfPendingHierarchies() > 0; };
   // When it was held back so, it is spread over the interactive frames that
   // follow (the user may be dragging), each planning its samples' time as fixed.
   in.CalibrationFrameTime = 0.0;

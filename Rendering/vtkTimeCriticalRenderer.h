@@ -281,11 +281,10 @@ public:
    * Calibrate()'s renders in the first render with objects, still or not
    * (unless the policy is FULL_RESOLUTION), so that no interactive frame
    * pays for it. With background hierarchy builds it waits for the first
-   * render in which not every object still waits for its hierarchy; that
-   * render may come while the user drags, so the samples are then spread
-   * over the interactive frames (at most two single renders per frame, sized
-   * to 40% of the target, planned as fixed time; a still frame runs the
-   * rest). OnlineCalibration (default on) refines the coefficients
+   * render in which no hierarchy is pending; that render may come while the
+   * user drags, so the samples are then spread over the interactive frames
+   * (one render per frame, sized to 40% of the target, planned as fixed
+   * time; a still frame runs the rest). OnlineCalibration (default on) refines the coefficients
    * from every measured frame, within lower bounds (see the class comment).
    * Turn both off and set the coefficients for deterministic resolutions
    * (tests).

@@ -77,7 +77,7 @@ namespace
 {
 constexpr double CalibrationTimeLimit = 30.0; // in targets
 constexpr double SpreadShare = 0.4;           // of the target, per spread frame
-constexpr int SpreadRenders = 2;              // at most, per spread frame
+constexpr int SpreadRenders = 1;              // at most, per spread frame
 constexpr double Zooms[] = { 1.0, 0.7, 1.8 };
 constexpr double Fractions[] = { 1.0, 0.5, 0.2, 0.0 };
 // Steps: 0 the coarsest levels at the first zoom, 1 the probe at a quarter
