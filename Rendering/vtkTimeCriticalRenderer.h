@@ -210,7 +210,10 @@ public:
    * never dropped while a less valuable one whose coarsest level costs
    * more is drawn. A frame whose fixed part alone (clear, swap, ordinary
    * actors, draw calls) reaches the target drops nothing: no choice of
-   * objects could hold it. Dropped objects are not drawn at all (resolution 0, as a
+   * objects could hold it, and neither does a frame planned with a cost
+   * model never measured here (no calibration, no given coefficients and no
+   * still frame yet): its overestimates would empty the view. Dropped
+   * objects are not drawn at all (resolution 0, as a
    * culled object: nothing of them is drawn, picked or shown in the
    * resolution map); a bounding-box outline level is not offered (see
    * docs/rendering.md).

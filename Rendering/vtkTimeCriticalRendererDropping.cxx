@@ -24,7 +24,11 @@ double vtkTimeCriticalRenderer::PrepareDropping(bool still, double correction)
   std::fill(in.Dropped.begin(), in.Dropped.end(), 0);
   this->NumberOfDroppedObjects = 0;
   in.DrawnPixels = in.TotalPixels;
-  in.DropPossible = !still && this->DropObjectsWhenOverloaded &&
+  // A model never measured on this machine (default coefficients: no
+  // calibration yet, as while background builds are pending, and no still
+  // frame to scale them) may overestimate several times: it would empty
+  // the view. Such frames draw every visible object.
+  in.DropPossible = !still && this->DropObjectsWhenOverloaded && !in.UsingDefaults &&
     (this->Policy == ACTIVE_SET || this->Policy == GREEDY_LOD);
   if (!in.DropPossible)
   {

@@ -289,3 +289,32 @@ TEST(TimeCriticalRendererDropping, BadIndicesAreNotDropped)
   EXPECT_FALSE(scene.Renderer->GetObjectDropped(scene.Renderer->GetNumberOfObjects()));
   EXPECT_FALSE(scene.Renderer->GetObjectDropped(1000000));
 }
+
+TEST(TimeCriticalRendererDropping, AModelNeverMeasuredDropsNothing)
+{
+  // Default coefficients (no calibration, none given, no still frame) may
+  // overestimate several times: dropping by them would empty the view.
+  vtkNew<vtkRenderWindow> window;
+  vtkNew<vtkTimeCriticalRenderer> renderer;
+  vtkNew<vtkMultiresolutionPolyDataMapper> mapper;
+  vtkNew<vtkActor> actor;
+  mapper->SetInputDataObject(MixedGrid(8));
+  actor->SetMapper(mapper);
+  renderer->AddActor(actor);
+  window->SetOffScreenRendering(1);
+  window->SetSize(300, 300);
+  window->AddRenderer(renderer);
+  renderer->ResetCamera();
+  renderer->AutomaticCalibrationOff();
+  renderer->SetTargetFrameTime(1e-5); // nothing fits
+  for (int frame = 0; frame < 3; ++frame)
+  {
+    window->Render();
+    EXPECT_EQ(renderer->GetNumberOfDroppedObjects(), 0) << "frame " << frame;
+  }
+  // Measured coefficients (given here; a calibration or a still frame too): it drops.
+  renderer->SetCostCoefficients(Scene::FrameCost, 0.0, Scene::TriangleCost, 0.0);
+  renderer->SetTargetFrameTime(Scene::FrameCost + 1e-4);
+  window->Render();
+  EXPECT_GT(renderer->GetNumberOfDroppedObjects(), 0);
+}
