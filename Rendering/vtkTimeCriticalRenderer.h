@@ -206,9 +206,9 @@ public:
    * the other policies, and still frames, draw every visible object. An
    * object's value is what it loses when not drawn, Interest x Npix (its
    * projected pixels times the velocity, eccentricity and importance
-   * factors, as timecritical::AlgorithmDegradation has it), and an object is
-   * never dropped while a less valuable one whose coarsest level costs
-   * more is drawn. A frame whose fixed part alone (clear, swap, ordinary
+   * factors, as timecritical::AlgorithmDegradation has it), and objects are
+   * dropped strictly by value: one is dropped only while every less valuable
+   * one is dropped too, or when they could not make room for it together. A frame whose fixed part alone (clear, swap, ordinary
    * actors, draw calls) reaches the target drops nothing: no choice of
    * objects could hold it, and neither does a frame planned with a cost
    * model never measured here (no calibration, no given coefficients and no

@@ -111,6 +111,10 @@ bool vtkTimeCriticalRenderer::ChooseWithDropping(double target, double fixed, do
   problem.MinResolution = in.MinResolution.data();
   problem.DropDegradation = in.DropDegradation.data();
   problem.AllowDrop = true;
+  // What users expect of a view: the largest, most valuable objects are the
+  // last to go (with value ~ area and fill cost ~ area, benefit per cost alone
+  // would drop large objects as readily as small ones).
+  problem.StrictValueOrder = true;
   const double base = fixed - objectFixed; // the frame's time without its objects
   problem.Budget = target - base;
   // When the frame's fixed part alone reaches the target, no choice of

@@ -208,6 +208,15 @@ TupleProblem::Solution GreedyTupleSelector::Solve(const TupleProblem& p, int* a,
     r[j] = 0.0;
     ++s.Iterations;
   }
+  if (dropping && p.StrictValueOrder && p.ImposeStrictValueOrder(a, this->ValueOrder) > 0)
+  {
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      // Those drawn now start at their coarsest; those dropped draw nothing.
+      r[i] = a[i] == TupleProblem::NotDrawn ? 0.0
+        : (a[i] >= 0 && r[i] == 0.0 ? p.Lo(i, static_cast<std::size_t>(a[i])) : r[i]);
+    }
+  }
   p.Summarize(a, r, s);
   return s;
 }

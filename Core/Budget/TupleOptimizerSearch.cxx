@@ -348,6 +348,10 @@ void TupleOptimizer::KeepValueOrder(int* a, double* r, double& objective, int& i
     this->TryA[i] = p.CheapestAlgorithm(i);
     this->TryA[j] = TupleProblem::NotDrawn;
   }
+  if (p.StrictValueOrder)
+  {
+    swaps += p.ImposeStrictValueOrder(this->TryA.data(), this->ValueOrder);
+  }
   if (swaps == 0)
   {
     return;

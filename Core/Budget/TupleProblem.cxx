@@ -261,4 +261,64 @@ bool TupleProblem::FindValueOrderViolation(const int* algorithms, std::size_t& d
   }
   return false;
 }
+
+std::size_t TupleProblem::ImposeStrictValueOrder(int* algorithms, ValueOrderScratch& scratch) const
+{
+  if (!this->DropDegradation)
+  {
+    return 0;
+  }
+  // Objects drawn with a mesh or not drawn, by value, most valuable first;
+  // `below` is what the drawn ones after the current position take at their
+  // cheapest tuples, `tail` the least valuable drawn one not yet dropped.
+  const std::size_t n = this->Count;
+  std::vector<double>& cheapest = scratch.Cheapest;
+  std::vector<std::size_t>& order = scratch.Order;
+  cheapest.resize(n);
+  order.clear();
+  double below = 0.0;
+  for (std::size_t j = 0; j < n; ++j)
+  {
+    if (algorithms[j] >= 0 || algorithms[j] == NotDrawn)
+    {
+      cheapest[j] = this->Cost(j, this->CheapestAlgorithm(j), 0.0);
+      order.push_back(j);
+      below += algorithms[j] >= 0 ? cheapest[j] : 0.0;
+    }
+  }
+  const double* value = this->DropDegradation;
+  std::sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) {
+    return value[x] != value[y] ? value[x] > value[y] : x < y;
+  });
+  std::size_t changed = 0;
+  std::size_t tail = order.size();
+  for (std::size_t k = 0; k < order.size() && k < tail; ++k)
+  {
+    const std::size_t i = order[k];
+    if (algorithms[i] >= 0)
+    {
+      below -= cheapest[i];
+      continue;
+    }
+    if (below < cheapest[i])
+    {
+      continue; // the less valuable drawn ones could not make room for it
+    }
+    double freed = 0.0;
+    while (freed < cheapest[i] && tail > k + 1)
+    {
+      const std::size_t j = order[--tail];
+      if (algorithms[j] >= 0)
+      {
+        algorithms[j] = NotDrawn;
+        freed += cheapest[j];
+        below -= cheapest[j];
+        ++changed;
+      }
+    }
+    algorithms[i] = this->CheapestAlgorithm(i);
+    ++changed;
+  }
+  return changed;
+}
 }

@@ -52,6 +52,9 @@ struct TIMECRITICALBUDGETCORE_EXPORT TupleProblem
   const double* BoxDegradation = nullptr; ///< per object, required with BoxCost
   const double* DropDegradation = nullptr; ///< per object, required with AllowDrop
   bool AllowDrop = false; ///< levels below the coarsest mesh allowed (interactive frames)
+  /// Dropping strictly by value: see ImposeStrictValueOrder(). Off: only
+  /// FindValueOrderViolation()'s weaker order holds.
+  bool StrictValueOrder = false;
   double Budget = 0.0;    ///< t_desired - t_fixed (s)
 
   /// What a tuple solver reports.
@@ -108,6 +111,18 @@ struct TIMECRITICALBUDGETCORE_EXPORT TupleProblem
    */
   bool FindValueOrderViolation(const int* algorithms, std::size_t& dropped, std::size_t& drawn,
     ValueOrderScratch& scratch) const;
+  /**
+   * The strict value order of dropping: in descending value, an object not
+   * drawn whose cheapest tuple costs no more than the cheapest tuples of all
+   * the less valuable drawn objects together is drawn at its cheapest tuple,
+   * and the least valuable drawn objects are dropped, fewest first, until
+   * they free that much. So an object is dropped only while every less
+   * valuable one is dropped too, or could not make room for it; the cost of
+   * the choice does not grow. Changes `algorithms` in place (the caller
+   * solves the resolutions again) and returns the objects changed. O(n log
+   * n); allocates only when scratch grows.
+   */
+  std::size_t ImposeStrictValueOrder(int* algorithms, ValueOrderScratch& scratch) const;
   /// Fill in Objective, Cost, Boxed, Dropped of s from a choice.
   void Summarize(const int* algorithms, const double* r, Solution& s) const;
 };

@@ -191,3 +191,43 @@ TEST(TupleProblem, BadInputThrowsClearly)
   EXPECT_NO_THROW(p.Validate());
 }
 }
+
+TEST(TupleProblem, StrictValueOrderDropsTheLeastValuableFirst)
+{
+  // Value and cost grow together (fill-bound objects): the weak order lets
+  // the most valuable go; the strict one draws it and drops the least
+  // valuable until there is room, and never raises the cost.
+  const std::vector<double> alpha = { 1.0 }, weight(5, 1.0), lo(5, 0.1);
+  const std::vector<double> maxTime = { 0.05, 0.04, 0.03, 0.02, 0.01 }; // cheapest: 0.005 ... 0.001
+  const std::vector<double> value = { 5.0, 4.0, 3.0, 2.0, 1.0 };
+  TupleProblem p;
+  p.Count = 5;
+  p.AlgorithmCount = 1;
+  p.Alpha = alpha.data();
+  p.Weight = weight.data();
+  p.MaxTime = maxTime.data();
+  p.MinResolution = lo.data();
+  p.DropDegradation = value.data();
+  p.AllowDrop = true;
+  p.Budget = 0.0075;
+  TupleProblem::ValueOrderScratch scratch;
+  const int N = TupleProblem::NotDrawn;
+  std::size_t dropped = 99, drawn = 99;
+  int choice[5] = { N, 0, 0, 0, 0 }; // 0.004 + 0.003 + 0.002 + 0.001 = 0.010
+  EXPECT_FALSE(p.FindValueOrderViolation(choice, dropped, drawn, scratch)) << "weak order holds";
+  EXPECT_EQ(p.ImposeStrictValueOrder(choice, scratch), 4u); // 0 in; 4, 3, 2 out (0.001+0.002+0.003 >= 0.005)
+  const int expected[5] = { 0, 0, N, N, N };
+  EXPECT_TRUE(std::equal(choice, choice + 5, expected));
+  // In order already: nothing changes.
+  EXPECT_EQ(p.ImposeStrictValueOrder(choice, scratch), 0u);
+  // An object that the less valuable drawn ones cannot make room for stays dropped.
+  int tight[5] = { N, N, N, N, 0 }; // only object 4 (0.001) drawn: no room for 3 (0.002)
+  EXPECT_EQ(p.ImposeStrictValueOrder(tight, scratch), 0u);
+  // The scratch has grown: again without allocating.
+  int again[5] = { N, 0, 0, 0, 0 };
+  const std::size_t before = timecritical::testing::GetAllocationCount();
+  EXPECT_EQ(p.ImposeStrictValueOrder(again, scratch), 4u);
+  EXPECT_EQ(timecritical::testing::GetAllocationCount(), before);
+  p.DropDegradation = nullptr;
+  EXPECT_EQ(p.ImposeStrictValueOrder(again, scratch), 0u);
+}
