@@ -525,17 +525,25 @@ void vtkMultiresolutionPolyDataMapper::ReplaceShaderValues(
   {
     return; // cell colors or no colors in this program
   }
-  vtkShaderProgram::Substitute(
-    source, "//VTK::Clip::Dec", "//VTK::Clip::Dec\nuniform int blockPass;", false);
-  vtkShaderProgram::Substitute(source, "//VTK::CustomEnd::Impl",
-    "if (scalarColor.a <= 0.0 || (blockPass == 0 && scalarColor.a < 1.0) ||\n"
-    "    (blockPass == 1 && scalarColor.a >= 1.0))\n"
-    "  {\n"
-    "  gl_Position = vec4(2.0, 2.0, 2.0, 1.0);\n"
-    "  }\n"
-    "//VTK::CustomEnd::Impl",
-    false);
+  vtkMultiresolutionMapperDetail::AddVertexDiscard(source, "uniform int blockPass;",
+    "scalarColor.a <= 0.0 || (blockPass == 0 && scalarColor.a < 1.0) ||\n"
+    "    (blockPass == 1 && scalarColor.a >= 1.0)");
   vertex->SetSource(source);
+}
+
+void vtkMultiresolutionMapperDetail::AddVertexDiscard(
+  std::string& source, const char* declaration, const char* condition)
+{
+  vtkShaderProgram::Substitute(
+    source, "//VTK::Clip::Dec", std::string("//VTK::Clip::Dec\n") + declaration, false);
+  vtkShaderProgram::Substitute(source, "//VTK::CustomEnd::Impl",
+    std::string("if (") + condition +
+      ")\n"
+      "  {\n"
+      "  gl_Position = vec4(2.0, 2.0, 2.0, 1.0);\n"
+      "  }\n"
+      "//VTK::CustomEnd::Impl",
+    false);
 }
 
 void vtkMultiresolutionPolyDataMapper::SetMapperShaderParameters(

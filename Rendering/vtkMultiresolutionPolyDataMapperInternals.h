@@ -89,6 +89,13 @@ void Grow(std::vector<T>& v, size_t size)
   }
 }
 
+/**
+ * Adds to a vertex shader's source a uniform declaration and a test that
+ * moves the vertex outside the clip volume when `condition` holds: a
+ * primitive all of whose vertices are moved is never rasterized.
+ */
+void AddVertexDiscard(std::string& source, const char* declaration, const char* condition);
+
 /// Writes the display vertices of a front (plus base); returns how many.
 size_t WriteDisplayVertices(
   const timecritical::ViewDependentRefinement& front, uint32_t base, uint32_t* out);

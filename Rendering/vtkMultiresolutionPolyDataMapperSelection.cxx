@@ -562,15 +562,8 @@ void vtkMultiresolutionPolyDataMapper::ReplacePickabilityShaderValues(
     return;
   }
   std::string source = vertex->GetSource();
-  vtkShaderProgram::Substitute(
-    source, "//VTK::Clip::Dec", "//VTK::Clip::Dec\nuniform samplerBuffer pickableVertices;", false);
-  vtkShaderProgram::Substitute(source, "//VTK::CustomEnd::Impl",
-    "if (texelFetch(pickableVertices, gl_VertexID).r < 0.5)\n"
-    "  {\n"
-    "  gl_Position = vec4(2.0, 2.0, 2.0, 1.0);\n"
-    "  }\n"
-    "//VTK::CustomEnd::Impl",
-    false);
+  vtkMultiresolutionMapperDetail::AddVertexDiscard(source, "uniform samplerBuffer pickableVertices;",
+    "texelFetch(pickableVertices, gl_VertexID).r < 0.5");
   vertex->SetSource(source);
 }
 
