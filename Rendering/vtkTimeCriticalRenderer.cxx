@@ -937,6 +937,7 @@ void vtkTimeCriticalRenderer::ChooseResolutions(bool still)
   input.TargetFrameTime = target - this->SafetyMargin;
   input.FixedTime = fixed;
   input.LastFrameTime = this->MeasuredFrameTime;
+  input.Hysteresis = still ? 0.0 : this->Hysteresis;
 
   // Overloaded (even the coarsest levels do not fit): the least valuable
   // objects are dropped; otherwise the policy chooses resolutions as usual.
@@ -951,6 +952,8 @@ void vtkTimeCriticalRenderer::ChooseResolutions(bool still)
   this->OptimizationTime = result.Seconds;
   this->OptimizationIterations = result.Iterations;
   this->OptimizationConverged = result.Converged;
+  this->NumberOfHeldObjects = static_cast<vtkIdType>(result.Held);
+  this->CountChanges();
 
   std::fill(in.Resolution.begin(), in.Resolution.end(), 0.0);
   for (std::size_t k = 0; k < m; ++k)
@@ -1075,4 +1078,7 @@ void vtkTimeCriticalRenderer::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "NumberOfCulledObjects: " << this->NumberOfCulledObjects << "\n";
   os << indent << "DropObjectsWhenOverloaded: " << this->DropObjectsWhenOverloaded << "\n";
   os << indent << "NumberOfDroppedObjects: " << this->NumberOfDroppedObjects << "\n";
+  os << indent << "Hysteresis: " << this->Hysteresis << "\n";
+  os << indent << "NumberOfChangedObjects: " << this->NumberOfChangedObjects << "\n";
+  os << indent << "NumberOfHeldObjects: " << this->NumberOfHeldObjects << "\n";
 }

@@ -224,6 +224,36 @@ public:
   bool GetObjectDropped(vtkIdType object) const;
   ///@}
 
+  ///@{
+  /**
+   * Hysteresis h on each object's choice, for every policy (Funkhouser &
+   * Séquin's benefit factor for temporal coherence; timecritical::
+   * HysteresisBand): a change of an object's resolution from the last frame
+   * must pay for itself by a factor 1 / (1 - h) in marginal value
+   * (degradation saved per second), so small changes of the view do not make
+   * resolutions flip-flop (popping). The continuous policies keep last
+   * frame's resolution of every object whose new one lies within a factor
+   * (1 - h)^(-1 / (alpha + 1)) of it, as long as the frame stays within its
+   * budget; GREEDY_LOD weighs its level moves by the same factor; frames that
+   * drop objects hold the drawn objects' resolutions alike. Still frames
+   * ignore it. In [0, 1); a value outside is an error and leaves the setting
+   * as it was. Default 0 (none; see docs/benchmarks/w1.md for what it costs
+   * and saves).
+   */
+  void SetHysteresis(double hysteresis);
+  vtkGetMacro(Hysteresis, double);
+  ///@}
+
+  ///@{
+  /**
+   * Popping statistics of the last frame: of the visible objects drawn in
+   * the frame before too, those whose resolution changed (dropped ones
+   * included), and those the hysteresis kept at their last resolution.
+   */
+  vtkGetMacro(NumberOfChangedObjects, vtkIdType);
+  vtkGetMacro(NumberOfHeldObjects, vtkIdType);
+  ///@}
+
   /// Render the window once with every object at full resolution.
   void StillRender();
 
@@ -533,6 +563,9 @@ protected:
   bool LastRenderWasStill = false;
   bool DropObjectsWhenOverloaded = true;
   vtkIdType NumberOfDroppedObjects = 0;
+  double Hysteresis = 0.0;
+  vtkIdType NumberOfChangedObjects = 0;
+  vtkIdType NumberOfHeldObjects = 0;
 
 private:
   vtkTimeCriticalRenderer(const vtkTimeCriticalRenderer&) = delete;
@@ -551,6 +584,11 @@ private:
   double PrepareDropping(bool still, double correction);
   double PlanningMargin(double target, double fixed, double objectFixed, bool still);
   bool ChooseWithDropping(double target, double fixed, double objectFixed);
+  // Hysteresis (vtkTimeCriticalRendererHysteresis.cxx): holds the drawn
+  // objects of a frame that dropped (returns the cost the holds added), and
+  // counts the changes of the frame's choice.
+  double HoldDrawnObjects(double slack);
+  void CountChanges();
   void RunCalibration();
   double MeasureDataChange(); ///< seconds of the pending frame's reads and vertex buffer builds
   void FinishFrame();
