@@ -766,8 +766,9 @@ void vtkTimeCriticalRenderer::MeasureObjects()
   const double dt = std::isfinite(this->MeasuredFrameTime) && this->MeasuredFrameTime > 0.0
     ? this->MeasuredFrameTime
     : (std::isfinite(in.EffectiveTarget) ? in.EffectiveTarget : this->TargetFrameTime);
-  const double focusX = this->FocusPoint[0] * width;
-  const double focusY = this->FocusPoint[1] * height;
+  this->UpdateFocus();
+  const double focusX = this->LastFocus[0] * width;
+  const double focusY = this->LastFocus[1] * height;
   timecritical::DegradationModel::DisplayParameters display;
   display.ResolutionX = this->DisplayResolution[0];
   display.ResolutionY = this->DisplayResolution[1];
@@ -780,8 +781,10 @@ void vtkTimeCriticalRenderer::MeasureObjects()
   config.Velocity = this->UseVelocity ? defaults.Velocity
                                       : timecritical::DegradationModel::VelocityModel::None;
   config.Eccentricity = this->UseEccentricity
-    ? defaults.Eccentricity
+    ? static_cast<timecritical::DegradationModel::EccentricityModel>(
+        this->EccentricityModel(static_cast<int>(defaults.Eccentricity)))
     : timecritical::DegradationModel::EccentricityModel::None;
+  config.LinearFalloffDegrees = this->LinearFalloffDegrees;
   in.Degradation.SetConfig(config);
 
   in.TotalPixels = 0.0;
@@ -1037,6 +1040,10 @@ void vtkTimeCriticalRenderer::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "UseVelocity: " << this->UseVelocity << "\n";
   os << indent << "UseEccentricity: " << this->UseEccentricity << "\n";
   os << indent << "FocusPoint: " << this->FocusPoint[0] << ", " << this->FocusPoint[1] << "\n";
+  os << indent << "FocusMode: " << this->FocusMode << "\n";
+  os << indent << "FocusFalloff: " << this->FocusFalloff << "\n";
+  os << indent << "LinearFalloffDegrees: " << this->LinearFalloffDegrees << "\n";
+  os << indent << "LastFocus: " << this->LastFocus[0] << ", " << this->LastFocus[1] << "\n";
   os << indent << "DisplayResolution: " << this->DisplayResolution[0] << " x "
      << this->DisplayResolution[1] << "\n";
   os << indent << "DisplaySize: " << this->DisplaySize[0] << " x " << this->DisplaySize[1] << "\n";

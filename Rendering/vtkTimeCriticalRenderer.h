@@ -166,6 +166,54 @@ public:
   ///@}
 
   ///@{
+  /**
+   * Where the focus of the eccentricity factor is (Funkhouser & Séquin's
+   * focus follows the screen centre or the cursor): FIXED_POINT uses
+   * FocusPoint (default); SCREEN_CENTER the viewport's centre; CURSOR the
+   * render window interactor's last event position (the mouse), or
+   * FocusPoint when the window has no interactor. A mode out of range is an
+   * error and leaves the setting as it was.
+   */
+  enum FocusModes
+  {
+    FIXED_POINT = 0,
+    SCREEN_CENTER = 1,
+    CURSOR = 2
+  };
+  void SetFocusMode(int mode);
+  vtkGetMacro(FocusMode, int);
+  void SetFocusModeToFixedPoint() { this->SetFocusMode(FIXED_POINT); }
+  void SetFocusModeToScreenCenter() { this->SetFocusMode(SCREEN_CENTER); }
+  void SetFocusModeToCursor() { this->SetFocusMode(CURSOR); }
+  /// The focus of the last frame, in normalized viewport coordinates.
+  vtkGetVector2Macro(LastFocus, double);
+  ///@}
+
+  ///@{
+  /**
+   * How an object's benefit falls with its distance from the focus
+   * (UseEccentricity on): FAMILY_DEFAULT as the degradation family has it
+   * (Reddy's eccentricity model of eq. 7, Yang et al.'s linear focus for
+   * YANG_GU_KANG; default), REDDY Reddy's model, LINEAR Funkhouser &
+   * Séquin's linear fall-off, 1 - E / LinearFalloffDegrees (E the distance
+   * in visual degrees, floored at 0.01). Out of range: an error, the setting
+   * kept.
+   */
+  enum FocusFalloffs
+  {
+    FAMILY_DEFAULT = 0,
+    REDDY = 1,
+    LINEAR = 2
+  };
+  void SetFocusFalloff(int falloff);
+  vtkGetMacro(FocusFalloff, int);
+  void SetFocusFalloffToReddy() { this->SetFocusFalloff(REDDY); }
+  void SetFocusFalloffToLinear() { this->SetFocusFalloff(LINEAR); }
+  void SetLinearFalloffDegrees(double degrees); ///< finite and > 0 (default 30)
+  vtkGetMacro(LinearFalloffDegrees, double);
+  ///@}
+
+  ///@{
   /// Physical display for eq. 8: resolution (pixels), size and viewing distance (metres).
   void SetDisplayResolution(double x, double y); ///< pixels, finite and > 0
   void SetDisplayResolution(const double r[2]) { this->SetDisplayResolution(r[0], r[1]); }
@@ -516,6 +564,10 @@ protected:
   bool UseVelocity = true;
   bool UseEccentricity = true;
   double FocusPoint[2] = { 0.5, 0.5 };
+  int FocusMode = FIXED_POINT;
+  int FocusFalloff = FAMILY_DEFAULT;
+  double LinearFalloffDegrees = 30.0;
+  double LastFocus[2] = { 0.5, 0.5 };
   double DisplayResolution[2] = { 1920.0, 1080.0 };
   double DisplaySize[2] = { 0.531, 0.299 };
   double ViewingDistance = 0.6;
@@ -589,6 +641,10 @@ private:
   // counts the changes of the frame's choice.
   double HoldDrawnObjects(double slack);
   void CountChanges();
+  // Focus (vtkTimeCriticalRendererFocus.cxx): the frame's focus in normalized
+  // viewport coordinates (LastFocus), and the eccentricity model to use.
+  void UpdateFocus();
+  int EccentricityModel(int familyDefault) const;
   void RunCalibration();
   double MeasureDataChange(); ///< seconds of the pending frame's reads and vertex buffer builds
   void FinishFrame();

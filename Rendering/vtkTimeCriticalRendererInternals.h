@@ -4,6 +4,7 @@
 // vtkTimeCriticalRendererCalibration.cxx: the start-up calibration;
 // vtkTimeCriticalRendererDropping.cxx: objects dropped when overloaded;
 // vtkTimeCriticalRendererHysteresis.cxx: hysteresis and popping counts;
+// vtkTimeCriticalRendererFocus.cxx: where the focus is and its fall-off;
 // vtkTimeCriticalRendererHierarchies.cxx: background builds).
 #ifndef vtkTimeCriticalRendererInternals_h
 #define vtkTimeCriticalRendererInternals_h

@@ -92,6 +92,11 @@ public:
   /// Hysteresis on each object's resolution, in [0, 1) (vtkTimeCriticalRenderer::SetHysteresis; default 0).
   void SetHysteresis(double hysteresis);
   double GetHysteresis();
+  /// Where the focus is (vtkTimeCriticalRenderer::FocusModes) and its fall-off (FocusFalloffs).
+  void SetFocusMode(int mode);
+  int GetFocusMode();
+  void SetFocusFalloff(int falloff);
+  int GetFocusFalloff();
   ///@}
 
   ///@{

@@ -1085,7 +1085,7 @@ void PrintPopping(const std::vector<PolicyRun>& runs)
 
 void PrintTable(const std::vector<PolicyRun>& runs, const std::vector<Goal>& goals, double target)
 {
-  std::printf("\n%-18s %8s %8s %8s %7s %8s %8s %9s %9s %8s %8s %10s\n", "policy", "mean ms",
+  std::printf("\n%-24s %8s %8s %8s %7s %8s %8s %9s %9s %8s %8s %10s\n", "policy", "mean ms",
     "median", "max ms", "CV", "<=110ms", "pred.err", "opt mean", "opt max", "PSNR dB",
     "PSNR med", "tris/frame");
   for (const auto& run : runs)
@@ -1095,7 +1095,7 @@ void PrintTable(const std::vector<PolicyRun>& runs, const std::vector<Goal>& goa
     const auto db = [isReference](double x) {
       return isReference ? std::string("ref") : DecibelCell(x);
     };
-    std::printf("%-18s %8.1f %8.1f %8.1f %7s %8s %8s %9s %9s %8s %8s %10.0f\n", run.Label.c_str(),
+    std::printf("%-24s %8.1f %8.1f %8.1f %7s %8s %8s %9s %9s %8s %8s %10.0f\n", run.Label.c_str(),
       1000.0 * s.Mean, 1000.0 * s.Median, 1000.0 * s.Max, PercentCell(s.CV).c_str(),
       PercentCell(s.ShareWithin).c_str(), PercentCell(s.PredictionError).c_str(),
       MillisecondsCell(s.OptimizerMean, 3).c_str(), MillisecondsCell(s.OptimizerMax, 3).c_str(),
@@ -1108,14 +1108,14 @@ void PrintTable(const std::vector<PolicyRun>& runs, const std::vector<Goal>& goa
     1000.0 * target, PSNRCap);
   if (!runs.empty() && runs.front().Stats.HeavyFrames > 0)
   {
-    std::printf("\nframes whose full-resolution time exceeds the target (%d of %d):\n%-18s %8s "
+    std::printf("\nframes whose full-resolution time exceeds the target (%d of %d):\n%-24s %8s "
                 "%7s %8s %9s\n",
       runs.front().Stats.HeavyFrames, runs.front().Stats.Frames, "policy", "mean ms", "CV",
       "<=110ms", "PSNR med");
     for (const auto& run : runs)
     {
       const Statistics& s = run.Stats;
-      std::printf("%-18s %8.1f %6.1f%% %7.1f%% %9.2f\n", run.Label.c_str(), 1000.0 * s.HeavyMean,
+      std::printf("%-24s %8.1f %6.1f%% %7.1f%% %9.2f\n", run.Label.c_str(), 1000.0 * s.HeavyMean,
         100.0 * s.HeavyCV, 100.0 * s.HeavyShareWithin, s.HeavyPSNRMedian);
     }
   }

@@ -103,6 +103,21 @@ class vtkPVTimeCriticalRenderViewTests(ViewTests, unittest.TestCase):
         self.assertAlmostEqual(loaded[0].GetClientSideObject().GetRenderer().GetHysteresis(), 0.35)
         ResetSession()
 
+    def test_focus_properties_reach_the_renderer(self):
+        view = self.view()
+        renderer = view.GetClientSideObject().GetRenderer()
+        self.assertEqual(view.FocusMode, "Fixed Point")
+        self.assertEqual(view.FocusFalloff, "Degradation Model Default")
+        view.FocusMode = "Cursor"
+        view.FocusFalloff = "Linear"
+        self.assertEqual(renderer.GetFocusMode(), renderer.CURSOR)
+        self.assertEqual(renderer.GetFocusFalloff(), renderer.LINEAR)
+        view.FocusMode = "Screen Center"
+        view.FocusFalloff = "Reddy"
+        self.assertEqual(renderer.GetFocusMode(), renderer.SCREEN_CENTER)
+        self.assertEqual(renderer.GetFocusFalloff(), renderer.REDDY)
+        self.assertEqual(view.GetClientSideObject().GetFocusMode(), renderer.SCREEN_CENTER)
+
     def test_hierarchy_cache_settings_apply_to_the_process_cache(self):
         view = self.view()
         server = view.GetClientSideObject()
