@@ -773,8 +773,9 @@ void vtkTimeCriticalRenderer::MeasureObjects()
   const double dt = std::isfinite(this->MeasuredFrameTime) && this->MeasuredFrameTime > 0.0
     ? this->MeasuredFrameTime
     : (std::isfinite(in.EffectiveTarget) ? in.EffectiveTarget : this->TargetFrameTime);
-  const double focusX = this->FocusPoint[0] * width;
-  const double focusY = this->FocusPoint[1] * height;
+  this->UpdateFocus();
+  const double focusX = this->LastFocus[0] * width;
+  const double focusY = this->LastFocus[1] * height;
   timecritical::DegradationModel::DisplayParameters display;
   display.ResolutionX = this->DisplayResolution[0];
   display.ResolutionY = this->DisplayResolution[1];
@@ -787,8 +788,10 @@ void vtkTimeCriticalRenderer::MeasureObjects()
   config.Velocity = this->UseVelocity ? defaults.Velocity
                                       : timecritical::DegradationModel::VelocityModel::None;
   config.Eccentricity = this->UseEccentricity
-    ? defaults.Eccentricity
+    ? static_cast<timecritical::DegradationModel::EccentricityModel>(
+        this->EccentricityModel(static_cast<int>(defaults.Eccentricity)))
     : timecritical::DegradationModel::EccentricityModel::None;
+  config.LinearFalloffDegrees = this->LinearFalloffDegrees;
   in.Degradation.SetConfig(config);
 
   in.TotalPixels = 0.0;
@@ -945,6 +948,7 @@ void vtkTimeCriticalRenderer::ChooseResolutions(bool still)
   input.TargetFrameTime = target - this->SafetyMargin;
   input.FixedTime = fixed;
   input.LastFrameTime = this->MeasuredFrameTime;
+  input.Hysteresis = still ? 0.0 : this->Hysteresis;
 
   // Overloaded (even the coarsest levels do not fit): the least valuable
   // objects are dropped; otherwise the policy chooses resolutions as usual.
@@ -959,6 +963,8 @@ void vtkTimeCriticalRenderer::ChooseResolutions(bool still)
   this->OptimizationTime = result.Seconds;
   this->OptimizationIterations = result.Iterations;
   this->OptimizationConverged = result.Converged;
+  this->NumberOfHeldObjects = static_cast<vtkIdType>(result.Held);
+  this->CountChanges();
 
   std::fill(in.Resolution.begin(), in.Resolution.end(), 0.0);
   for (std::size_t k = 0; k < m; ++k)
@@ -1042,6 +1048,10 @@ void vtkTimeCriticalRenderer::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "UseVelocity: " << this->UseVelocity << "\n";
   os << indent << "UseEccentricity: " << this->UseEccentricity << "\n";
   os << indent << "FocusPoint: " << this->FocusPoint[0] << ", " << this->FocusPoint[1] << "\n";
+  os << indent << "FocusMode: " << this->FocusMode << "\n";
+  os << indent << "FocusFalloff: " << this->FocusFalloff << "\n";
+  os << indent << "LinearFalloffDegrees: " << this->LinearFalloffDegrees << "\n";
+  os << indent << "LastFocus: " << this->LastFocus[0] << ", " << this->LastFocus[1] << "\n";
   os << indent << "DisplayResolution: " << this->DisplayResolution[0] << " x "
      << this->DisplayResolution[1] << "\n";
   os << indent << "DisplaySize: " << this->DisplaySize[0] << " x " << this->DisplaySize[1] << "\n";
@@ -1083,4 +1093,7 @@ void vtkTimeCriticalRenderer::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "NumberOfCulledObjects: " << this->NumberOfCulledObjects << "\n";
   os << indent << "DropObjectsWhenOverloaded: " << this->DropObjectsWhenOverloaded << "\n";
   os << indent << "NumberOfDroppedObjects: " << this->NumberOfDroppedObjects << "\n";
+  os << indent << "Hysteresis: " << this->Hysteresis << "\n";
+  os << indent << "NumberOfChangedObjects: " << this->NumberOfChangedObjects << "\n";
+  os << indent << "NumberOfHeldObjects: " << this->NumberOfHeldObjects << "\n";
 }

@@ -166,6 +166,54 @@ public:
   ///@}
 
   ///@{
+  /**
+   * Where the focus of the eccentricity factor is (Funkhouser & Séquin's
+   * focus follows the screen centre or the cursor): FIXED_POINT uses
+   * FocusPoint (default); SCREEN_CENTER the viewport's centre; CURSOR the
+   * render window interactor's last event position (the mouse), or
+   * FocusPoint when the window has no interactor. A mode out of range is an
+   * error and leaves the setting as it was.
+   */
+  enum FocusModes
+  {
+    FIXED_POINT = 0,
+    SCREEN_CENTER = 1,
+    CURSOR = 2
+  };
+  void SetFocusMode(int mode);
+  vtkGetMacro(FocusMode, int);
+  void SetFocusModeToFixedPoint() { this->SetFocusMode(FIXED_POINT); }
+  void SetFocusModeToScreenCenter() { this->SetFocusMode(SCREEN_CENTER); }
+  void SetFocusModeToCursor() { this->SetFocusMode(CURSOR); }
+  /// The focus of the last frame, in normalized viewport coordinates.
+  vtkGetVector2Macro(LastFocus, double);
+  ///@}
+
+  ///@{
+  /**
+   * How an object's benefit falls with its distance from the focus
+   * (UseEccentricity on): FAMILY_DEFAULT as the degradation family has it
+   * (Reddy's eccentricity model of eq. 7, Yang et al.'s linear focus for
+   * YANG_GU_KANG; default), REDDY Reddy's model, LINEAR Funkhouser &
+   * Séquin's linear fall-off, 1 - E / LinearFalloffDegrees (E the distance
+   * in visual degrees, floored at 0.01). Out of range: an error, the setting
+   * kept.
+   */
+  enum FocusFalloffs
+  {
+    FAMILY_DEFAULT = 0,
+    REDDY = 1,
+    LINEAR = 2
+  };
+  void SetFocusFalloff(int falloff);
+  vtkGetMacro(FocusFalloff, int);
+  void SetFocusFalloffToReddy() { this->SetFocusFalloff(REDDY); }
+  void SetFocusFalloffToLinear() { this->SetFocusFalloff(LINEAR); }
+  void SetLinearFalloffDegrees(double degrees); ///< finite and > 0 (default 30)
+  vtkGetMacro(LinearFalloffDegrees, double);
+  ///@}
+
+  ///@{
   /// Physical display for eq. 8: resolution (pixels), size and viewing distance (metres).
   void SetDisplayResolution(double x, double y); ///< pixels, finite and > 0
   void SetDisplayResolution(const double r[2]) { this->SetDisplayResolution(r[0], r[1]); }
@@ -225,6 +273,36 @@ public:
   vtkGetMacro(NumberOfDroppedObjects, vtkIdType);
   /// Whether the last frame dropped object i (false for a bad index).
   bool GetObjectDropped(vtkIdType object) const;
+  ///@}
+
+  ///@{
+  /**
+   * Hysteresis h on each object's choice, for every policy (Funkhouser &
+   * Séquin's benefit factor for temporal coherence; timecritical::
+   * HysteresisBand): a change of an object's resolution from the last frame
+   * must pay for itself by a factor 1 / (1 - h) in marginal value
+   * (degradation saved per second), so small changes of the view do not make
+   * resolutions flip-flop (popping). The continuous policies keep last
+   * frame's resolution of every object whose new one lies within a factor
+   * (1 - h)^(-1 / (alpha + 1)) of it, as long as the frame stays within its
+   * budget; GREEDY_LOD weighs its level moves by the same factor; frames that
+   * drop objects hold the drawn objects' resolutions alike. Still frames
+   * ignore it. In [0, 1); a value outside is an error and leaves the setting
+   * as it was. Default 0 (none; see docs/benchmarks/w1.md for what it costs
+   * and saves).
+   */
+  void SetHysteresis(double hysteresis);
+  vtkGetMacro(Hysteresis, double);
+  ///@}
+
+  ///@{
+  /**
+   * Popping statistics of the last frame: of the visible objects drawn in
+   * the frame before too, those whose resolution changed (dropped ones
+   * included), and those the hysteresis kept at their last resolution.
+   */
+  vtkGetMacro(NumberOfChangedObjects, vtkIdType);
+  vtkGetMacro(NumberOfHeldObjects, vtkIdType);
   ///@}
 
   /// Render the window once with every object at full resolution.
@@ -492,6 +570,10 @@ protected:
   bool UseVelocity = true;
   bool UseEccentricity = true;
   double FocusPoint[2] = { 0.5, 0.5 };
+  int FocusMode = FIXED_POINT;
+  int FocusFalloff = FAMILY_DEFAULT;
+  double LinearFalloffDegrees = 30.0;
+  double LastFocus[2] = { 0.5, 0.5 };
   double DisplayResolution[2] = { 1920.0, 1080.0 };
   double DisplaySize[2] = { 0.531, 0.299 };
   double ViewingDistance = 0.6;
@@ -539,6 +621,9 @@ protected:
   bool LastRenderWasStill = false;
   bool DropObjectsWhenOverloaded = true;
   vtkIdType NumberOfDroppedObjects = 0;
+  double Hysteresis = 0.0;
+  vtkIdType NumberOfChangedObjects = 0;
+  vtkIdType NumberOfHeldObjects = 0;
 
 private:
   vtkTimeCriticalRenderer(const vtkTimeCriticalRenderer&) = delete;
@@ -561,6 +646,15 @@ private:
   void CalibrationStep(double savedAngle, double savedScale);
   double CalibrationSample(double r, int renders, bool record = true);
   void FinishCalibration();
+  // Hysteresis (vtkTimeCriticalRendererHysteresis.cxx): holds the drawn
+  // objects of a frame that dropped (returns the cost the holds added), and
+  // counts the changes of the frame's choice.
+  double HoldDrawnObjects(double slack);
+  void CountChanges();
+  // Focus (vtkTimeCriticalRendererFocus.cxx): the frame's focus in normalized
+  // viewport coordinates (LastFocus), and the eccentricity model to use.
+  void UpdateFocus();
+  int EccentricityModel(int familyDefault) const;
   double MeasureDataChange(); ///< seconds of the pending frame's reads and vertex buffer builds
   void FinishFrame();
 

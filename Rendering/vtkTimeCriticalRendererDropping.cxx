@@ -137,14 +137,6 @@ bool vtkTimeCriticalRenderer::ChooseWithDropping(double target, double fixed, do
     vtkErrorMacro("Cannot choose the objects to drop: " << e.what());
     return false;
   }
-  timecritical::PolicyResult& result = in.DropResult;
-  result = timecritical::PolicyResult();
-  result.Seconds = Seconds(start, Clock::now());
-  result.PredictedFrameTime = base + solution.Cost;
-  result.Objective = solution.Objective;
-  result.Iterations = solution.Iterations;
-  result.Converged = true;
-  result.OverBudget = result.PredictedFrameTime > target * (1.0 + 1e-9);
   vtkIdType dropped = 0;
   for (std::size_t k = 0; k < m; ++k)
   {
@@ -158,5 +150,15 @@ bool vtkTimeCriticalRenderer::ChooseWithDropping(double target, double fixed, do
     }
   }
   this->NumberOfDroppedObjects = dropped;
+  const double held = this->HoldDrawnObjects(problem.Budget - solution.Cost);
+  timecritical::PolicyResult& result = in.DropResult;
+  result = timecritical::PolicyResult();
+  result.Seconds = Seconds(start, Clock::now());
+  result.PredictedFrameTime = base + solution.Cost + held;
+  result.Objective = solution.Objective;
+  result.Iterations = solution.Iterations;
+  result.Converged = true;
+  result.OverBudget = result.PredictedFrameTime > target * (1.0 + 1e-9);
+  result.Held = static_cast<std::size_t>(this->NumberOfHeldObjects);
   return true;
 }

@@ -3,6 +3,8 @@
 // files (vtkTimeCriticalRenderer.cxx: settings, objects, the frame;
 // vtkTimeCriticalRendererCalibration.cxx: the start-up calibration;
 // vtkTimeCriticalRendererDropping.cxx: objects dropped when overloaded;
+// vtkTimeCriticalRendererHysteresis.cxx: hysteresis and popping counts;
+// vtkTimeCriticalRendererFocus.cxx: where the focus is and its fall-off;
 // vtkTimeCriticalRendererHierarchies.cxx: background builds).
 #ifndef vtkTimeCriticalRendererInternals_h
 #define vtkTimeCriticalRendererInternals_h
@@ -22,6 +24,7 @@
 #include "FrameTimeCorrector.h"
 #include "FullResolutionPolicy.h"
 #include "GreedyLODPolicy.h"
+#include "HysteresisBand.h"
 #include "StaticThresholdPolicy.h"
 #include "TupleProblem.h"
 #include "ViewHeuristics.h"
@@ -213,6 +216,7 @@ struct vtkTimeCriticalRenderer::Internals
   bool DropPossible = false; // this frame may drop (interactive, setting on, policy that drops)
   double DrawnPixels = 0.0;  // covered pixels of the objects drawn (not dropped)
   timecritical::PolicyResult DropResult; // the choice of a frame that dropped
+  timecritical::HysteresisBand Band;     // hysteresis of the frames that drop
 
   // What each mapper's objects looked like last frame (for warm start and velocity).
   struct MapperHistory

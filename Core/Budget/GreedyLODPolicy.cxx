@@ -121,14 +121,6 @@ void GreedyLODPolicy::SetLevels(const double* levels, std::size_t count)
   this->Levels = this->Tuples.GetLevels();
 }
 
-void GreedyLODPolicy::SetHysteresis(double hysteresis)
-{
-  if (std::isfinite(hysteresis) && hysteresis >= 0.0 && hysteresis < 1.0)
-  {
-    this->Hysteresis = hysteresis;
-  }
-}
-
 double GreedyLODPolicy::Resolution(std::size_t i, int level) const
 {
   return std::max(this->Levels[static_cast<std::size_t>(level)], this->Lo[i]);
@@ -144,7 +136,7 @@ double GreedyLODPolicy::UpValue(std::size_t i) const
     (this->T[i] * (b - a));
   if (this->PreviousLevel[i] >= 0 && l >= this->PreviousLevel[i])
   {
-    value *= 1.0 - this->Hysteresis; // moving away from last frame's level
+    value *= 1.0 - this->Input->Hysteresis; // moving away from last frame's level
   }
   return value;
 }
@@ -159,7 +151,7 @@ double GreedyLODPolicy::DownValue(std::size_t i) const
     (this->T[i] * (b - a));
   if (this->PreviousLevel[i] >= 0 && l <= this->PreviousLevel[i])
   {
-    value /= 1.0 - this->Hysteresis;
+    value /= 1.0 - this->Input->Hysteresis;
   }
   return value;
 }

@@ -26,9 +26,13 @@ namespace timecritical
  * curves of eq. 9 it is the greedy of the multiple-choice knapsack's
  * relaxation), so that this policy optimizes the same objective as the
  * active-set one and the two can be compared. Hysteresis (their benefit
- * factor for temporal coherence): the value of a step away from last frame's
- * level is multiplied by (1 - Hysteresis) upward and divided by it downward,
- * so small changes in the scene do not make levels flip-flop.
+ * factor for temporal coherence) is PolicyInput::Hysteresis h, the one
+ * setting of every policy (HysteresisBand): the value of a step away from
+ * last frame's level is multiplied by (1 - h) upward and divided by it
+ * downward, so small changes in the scene do not make levels flip-flop. This
+ * is the band's rule (a change must pay for itself by 1 / (1 - h) in
+ * marginal value) applied to discrete moves, whose levels lie a factor of
+ * about 2 apart, outside the band's resolution form for small h.
  *
  * Levels default to the paper's six LODs 100, 50, 25, 12, 6, 3 %; below rmin
  * a level costs as much as rmin (eq. 3) and is not used. Indexed heaps make
@@ -37,7 +41,8 @@ namespace timecritical
  * SelectTuples() chooses (rendering algorithm, level) tuples and the levels
  * below the coarsest mesh instead, over the same levels, with
  * GreedyTupleSelector (Funkhouser & Séquin's greedy by benefit / cost, with
- * its bound of half the optimum; no hysteresis there yet).
+ * its bound of half the optimum); the renderer applies the hysteresis band
+ * to the tuples' resolutions.
  */
 class TIMECRITICALBUDGETCORE_EXPORT GreedyLODPolicy : public ResolutionPolicy
 {
@@ -49,9 +54,6 @@ public:
   /// Level resolutions in (0, 1], any order; 1 is always included.
   void SetLevels(const double* levels, std::size_t count);
   const std::vector<double>& GetLevels() const { return this->Levels; }
-  /// In [0, 1): 0 disables hysteresis.
-  void SetHysteresis(double hysteresis);
-  double GetHysteresis() const { return this->Hysteresis; }
 
   /// Tuples for the frame (GreedyTupleSelector::Solve()); throws std::invalid_argument on bad input.
   TupleProblem::Solution SelectTuples(const TupleProblem& problem, int* algorithms, double* r)
@@ -93,7 +95,6 @@ private:
   void Refresh(std::size_t i);
 
   std::vector<double> Levels; // ascending, last = 1
-  double Hysteresis = 0.1;
   // Current frame.
   const PolicyInput* Input = nullptr;
   std::vector<int> Level, MinLevel, PreviousLevel;

@@ -24,13 +24,26 @@ PolicyResult ResolutionPolicy::Select(const PolicyInput& input, double* r)
 {
   using Clock = std::chrono::steady_clock;
   const auto start = Clock::now();
+  HysteresisBand::CheckHysteresis(input.Hysteresis);
   PolicyResult result;
+  const ResolutionProblem problem = input.GetProblem();
   if (input.Count > 0 && r)
   {
     this->Choose(input, r, result);
+    if (input.Hysteresis > 0.0 && input.Previous && input.MaxTime &&
+      ResolutionProblem::IsValidAlpha(input.Alpha))
+    {
+      HysteresisBand::Input band;
+      band.Count = input.Count;
+      band.MaxTime = input.MaxTime;
+      band.MinResolution = input.MinResolution;
+      band.Previous = input.Previous;
+      band.Alpha = input.Alpha;
+      band.Slack = std::max(0.0, problem.Budget - problem.EffectiveCost(r));
+      result.Held = this->Band.Apply(band, input.Hysteresis, r);
+    }
   }
   result.Seconds = std::chrono::duration<double>(Clock::now() - start).count();
-  const ResolutionProblem problem = input.GetProblem();
   if (input.Count > 0 && r && input.MaxTime)
   {
     result.PredictedFrameTime = input.FixedTime + problem.EffectiveCost(r);

@@ -2,6 +2,7 @@
 #ifndef timecritical_ResolutionPolicy_h
 #define timecritical_ResolutionPolicy_h
 
+#include "HysteresisBand.h"
 #include "ResolutionProblem.h"
 #include "TimeCriticalBudgetCoreExport.h"
 
@@ -24,6 +25,9 @@ struct TIMECRITICALBUDGETCORE_EXPORT PolicyInput
   double TargetFrameTime = 0.1;          ///< t_desired (s)
   double FixedTime = 0.0;                ///< t_fixed (s) (eq. 4)
   double LastFrameTime = std::numeric_limits<double>::quiet_NaN(); ///< measured, previous frame
+  /// h in [0, 1): a change from Previous must pay for itself by 1 / (1 - h) in
+  /// marginal value (HysteresisBand); 0: none. Needs Previous.
+  double Hysteresis = 0.0;
 
   /// The eq. 11 problem of this frame (Budget = TargetFrameTime - FixedTime).
   ResolutionProblem GetProblem() const;
@@ -38,6 +42,7 @@ struct TIMECRITICALBUDGETCORE_EXPORT PolicyResult
   bool Converged = true;           ///< the policy finished its own procedure
   bool OverBudget = false;         ///< PredictedFrameTime > TargetFrameTime
   double Seconds = 0.0;            ///< time spent choosing
+  std::size_t Held = 0;            ///< objects kept at last frame's r by the hysteresis band
 };
 
 /**
@@ -53,7 +58,12 @@ public:
   virtual ~ResolutionPolicy();
   virtual const char* GetName() const = 0;
 
-  /// Choose r (input.Count values, each in [rmin_i, 1]).
+  /**
+   * Choose r (input.Count values, each in [rmin_i, 1]). Then, for every
+   * policy alike, the hysteresis band (HysteresisBand) keeps last frame's
+   * resolution of the objects whose new one lies within it, within the
+   * budget left. Throws std::invalid_argument for a hysteresis outside [0, 1).
+   */
   PolicyResult Select(const PolicyInput& input, double* r);
 
   /// Forget any state carried between frames.
@@ -61,6 +71,9 @@ public:
 
 protected:
   virtual void Choose(const PolicyInput& input, double* r, PolicyResult& result) = 0;
+
+private:
+  HysteresisBand Band;
 };
 }
 

@@ -280,6 +280,9 @@ TIMECRITICAL_FORWARD(SetUseVelocity, bool, renderer->SetUseVelocity(value))
 TIMECRITICAL_FORWARD(SetUseEccentricity, bool, renderer->SetUseEccentricity(value))
 TIMECRITICAL_FORWARD(SetDropObjectsWhenOverloaded, bool,
   renderer->SetDropObjectsWhenOverloaded(value))
+TIMECRITICAL_FORWARD(SetHysteresis, double, renderer->SetHysteresis(value))
+TIMECRITICAL_FORWARD(SetFocusMode, int, renderer->SetFocusMode(value))
+TIMECRITICAL_FORWARD(SetFocusFalloff, int, renderer->SetFocusFalloff(value))
 TIMECRITICAL_FORWARD(SetViewDependentRefinement, bool, renderer->SetViewDependentRefinement(value))
 TIMECRITICAL_FORWARD(SetRefinementMode, int, renderer->SetRefinementMode(value))
 TIMECRITICAL_FORWARD(SetPixelThreshold, double, renderer->SetPixelThreshold(value))
@@ -330,6 +333,24 @@ bool vtkPVTimeCriticalRenderView::GetDropObjectsWhenOverloaded()
 {
   vtkTimeCriticalRenderer* renderer = this->GetTimeCriticalRenderer();
   return renderer && renderer->GetDropObjectsWhenOverloaded();
+}
+
+double vtkPVTimeCriticalRenderView::GetHysteresis()
+{
+  vtkTimeCriticalRenderer* renderer = this->GetTimeCriticalRenderer();
+  return renderer ? renderer->GetHysteresis() : 0.0;
+}
+
+int vtkPVTimeCriticalRenderView::GetFocusMode()
+{
+  vtkTimeCriticalRenderer* renderer = this->GetTimeCriticalRenderer();
+  return renderer ? renderer->GetFocusMode() : -1;
+}
+
+int vtkPVTimeCriticalRenderView::GetFocusFalloff()
+{
+  vtkTimeCriticalRenderer* renderer = this->GetTimeCriticalRenderer();
+  return renderer ? renderer->GetFocusFalloff() : -1;
 }
 
 //------------------------------------------------------------------------------

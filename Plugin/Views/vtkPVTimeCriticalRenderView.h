@@ -89,6 +89,14 @@ public:
   /// Leave the least valuable objects out when even their coarsest levels do not fit (default on).
   void SetDropObjectsWhenOverloaded(bool on);
   bool GetDropObjectsWhenOverloaded();
+  /// Hysteresis on each object's resolution, in [0, 1) (vtkTimeCriticalRenderer::SetHysteresis; default 0).
+  void SetHysteresis(double hysteresis);
+  double GetHysteresis();
+  /// Where the focus is (vtkTimeCriticalRenderer::FocusModes) and its fall-off (FocusFalloffs).
+  void SetFocusMode(int mode);
+  int GetFocusMode();
+  void SetFocusFalloff(int falloff);
+  int GetFocusFalloff();
   ///@}
 
   ///@{

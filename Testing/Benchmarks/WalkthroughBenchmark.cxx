@@ -15,13 +15,18 @@
  * Per frame: wall-clock frame time around Render() (image capture excluded),
  * the renderer's own measurement, predicted and optimizer time, iterations,
  * triangles, culled objects, and PSNR against the 'none' frame of the same
- * camera (OpenImageIO). Prints one table and the goals of TimeCritical,
+ * camera (OpenImageIO), and popping: the share of the visible objects whose
+ * resolution changed from the frame before. With --hysteresis H every policy
+ * of the time-critical renderer runs a second time with that hysteresis
+ * (vtkTimeCriticalRenderer::SetHysteresis), in the same run, named
+ * "<policy>+hysteresis". Prints one table and the goals of TimeCritical,
  * writes walkthrough.json, key frames as PNG and (with matplotlib) the plot.
  * Missed goals are reported, not failed: the exit status is nonzero only for
  * errors.
  *
  *   WalkthroughBenchmark [--quick] [--frames N] [--objects N] [--policies LIST]
  *                        [--target S] [--output DIR] [--json FILE] [--data DIR]
+ *                        [--hysteresis H]
  */
 #include "BenchmarkArguments.h"
 #include "BenchmarkImages.h"
@@ -168,6 +173,8 @@ struct Settings
   bool Perceptual = true;
   double SafetyFactor = 1.5;
   int Family = vtkTimeCriticalRenderer::HITCHNER;
+  /// > 0: a second pass of every time-critical-renderer policy with this hysteresis.
+  double Hysteresis = 0.0;
 };
 
 void PrintUsage()
@@ -190,6 +197,8 @@ void PrintUsage()
        "                  path) as JSON and stop, without rendering\n"
        "  --no-perceptual TimeCritical without Reddy's velocity and eccentricity factors\n"
        "  --safety K      TimeCritical's safety factor (default 1.5)\n"
+       "  --hysteresis H  run every time-critical-renderer policy again with hysteresis H\n"
+       "                  in (0, 1), named <policy>+hysteresis (popping with and without)\n"
        "  --family N      degradation family: 0 Hitchner (default), 1 Funkhouser,\n"
        "                  2 Gobbetti-Bouvier 1999, 3 Yang-Gu-Kang\n";
 }
@@ -217,6 +226,8 @@ Settings ParseArguments(int argc, char* argv[])
   arguments.AddFlag("--no-perceptual", noPerceptual);
   arguments.AddNumber("--safety", settings.SafetyFactor);
   arguments.AddInteger("--family", settings.Family, 0, 3);
+  arguments.AddNumber(
+    "--hysteresis", settings.Hysteresis, [](double x) { return x > 0.0 && x < 1.0; });
   arguments.Parse();
   if (help)
   {
@@ -328,6 +339,9 @@ struct FrameRecord : PolicyFrame
   double VisibleTriangles = 0.0; ///< full-resolution triangles of the objects not culled
   double Culled = 0.0;
   std::array<int, 6> LODCounts{}; ///< vtkLODProp3D: props drawn at each level
+  /// Popping: share of the visible objects drawn in the frame before too
+  /// whose resolution changed (vtkTimeCriticalRenderer::GetNumberOfChangedObjects).
+  double Changed = NaN;
 };
 
 struct Statistics : PolicyStatistics
@@ -342,11 +356,14 @@ struct Statistics : PolicyStatistics
   /// budget is image quality given away.
   int HeavyFrames = 0;
   double HeavyMean = NaN, HeavyCV = NaN, HeavyShareWithin = NaN, HeavyPSNRMedian = NaN;
+  double ChangedMean = NaN; ///< mean popping share per frame (time-critical renderer only)
 };
 
 struct PolicyRun
 {
   const PolicyInfo* Policy = nullptr;
+  double Hysteresis = 0.0;   ///< vtkTimeCriticalRenderer::SetHysteresis of this run
+  std::string Name, Label;   ///< the policy's, with "+hysteresis" for a hysteresis pass
   std::vector<FrameRecord> Frames;
   Statistics Stats;
   double Seconds = 0.0;
@@ -408,9 +425,13 @@ Statistics ComputeStatistics(const std::vector<FrameRecord>& frames, double targ
 {
   Statistics s;
   static_cast<PolicyStatistics&>(s) = ComputePolicyStatistics(frames, target);
-  std::vector<double> rendererDiff, optimizer, iterations;
+  std::vector<double> rendererDiff, optimizer, iterations, changed;
   for (const FrameRecord& f : frames)
   {
+    if (std::isfinite(f.Changed))
+    {
+      changed.push_back(f.Changed);
+    }
     if (std::isfinite(f.RendererMeasured) && f.Measured > 0.0)
     {
       rendererDiff.push_back((f.RendererMeasured - f.Measured) / f.Measured);
@@ -436,6 +457,7 @@ Statistics ComputeStatistics(const std::vector<FrameRecord>& frames, double targ
   s.OptimizerMean = Mean(optimizer);
   s.OptimizerMax = optimizer.empty() ? NaN : *std::max_element(optimizer.begin(), optimizer.end());
   s.IterationsMean = Mean(iterations);
+  s.ChangedMean = changed.empty() ? NaN : Mean(changed);
   return s;
 }
 
@@ -515,6 +537,10 @@ private:
   /// Object resolutions of TimeCritical at key frames B and the turn, for the resolution maps.
   std::vector<std::vector<double>> MapResolutions;
   std::vector<int> MapFrames;
+
+public:
+  /// Hysteresis of the time-critical renderers made from now on (0: none).
+  double Hysteresis = 0.0;
 };
 
 void Walkthrough::Setup()
@@ -617,6 +643,7 @@ vtkSmartPointer<vtkTimeCriticalRenderer> Walkthrough::MakeTimeCriticalRenderer(i
   renderer->SetSafetyFactor(this->Options.SafetyFactor);
   renderer->SetDegradationFamily(this->Options.Family);
   renderer->SetPolicy(policy);
+  renderer->SetHysteresis(this->Hysteresis);
   if (std::isfinite(this->Coefficients[0]))
   {
     // Every policy starts from the same calibration (and refines it online),
@@ -689,6 +716,9 @@ PolicyRun Walkthrough::Run(const PolicyInfo& policy)
 {
   PolicyRun run;
   run.Policy = &policy;
+  run.Hysteresis = this->Hysteresis;
+  run.Name = std::string(policy.Name) + (run.Hysteresis > 0.0 ? "+hysteresis" : "");
+  run.Label = std::string(policy.Label) + (run.Hysteresis > 0.0 ? " +hyst." : "");
   const bool lod = policy.Kind == PolicyKind::LODProp3D;
   const bool reference = policy.Kind == PolicyKind::None;
   vtkSmartPointer<vtkTimeCriticalRenderer> tc;
@@ -778,6 +808,11 @@ PolicyRun Walkthrough::Run(const PolicyInfo& policy)
       record.Converged = tc->GetOptimizationConverged();
       record.Triangles = static_cast<double>(tc->GetTrianglesDrawn());
       record.Culled = static_cast<double>(tc->GetNumberOfCulledObjects());
+      const double visible = static_cast<double>(tc->GetNumberOfObjects()) - record.Culled;
+      if (frame > 0 && visible > 0.0)
+      {
+        record.Changed = static_cast<double>(tc->GetNumberOfChangedObjects()) / visible;
+      }
       for (vtkIdType i = 0; i < tc->GetNumberOfObjects(); ++i)
       {
         if (tc->GetObjectResolution(i) > 0.0)
@@ -786,7 +821,7 @@ PolicyRun Walkthrough::Run(const PolicyInfo& policy)
             this->Mapper->GetObjectNumberOfTriangles(tc->GetObjectIndex(i)));
         }
       }
-      if (policy.Kind == PolicyKind::TimeCritical &&
+      if (policy.Kind == PolicyKind::TimeCritical && run.Hysteresis == 0.0 &&
         (frame == this->Path.GetKeyB() || frame == this->Path.GetKeyTurn()))
       {
         std::vector<double> r(static_cast<size_t>(this->Mapper->GetNumberOfObjects()));
@@ -838,7 +873,7 @@ PolicyRun Walkthrough::Run(const PolicyInfo& policy)
         record.PSNR = c.PSNR;
         record.Identical = c.Identical;
       }
-      this->SaveKeyFrame(policy.Name, frame, image);
+      this->SaveKeyFrame(run.Name, frame, image);
     }
     run.Frames.push_back(record);
     if (frame % 20 == 0 || frame == frames - 1)
@@ -849,7 +884,7 @@ PolicyRun Walkthrough::Run(const PolicyInfo& policy)
         std::snprintf(psnr, sizeof(psnr), ", PSNR %.2f dB", record.PSNR);
       }
       std::fprintf(stderr, "  [%s] frame %3d/%d: %7.1f ms, %9.0f triangles, %4.0f culled%s\n",
-        policy.Name, frame + 1, frames, 1000.0 * record.Measured, record.Triangles, record.Culled,
+        run.Name.c_str(), frame + 1, frames, 1000.0 * record.Measured, record.Triangles, record.Culled,
         psnr);
     }
   }
@@ -963,7 +998,7 @@ std::vector<Goal> EvaluateGoals(
   const PolicyRun* tc = nullptr;
   for (const auto& run : runs)
   {
-    if (run.Policy->Kind == PolicyKind::TimeCritical)
+    if (run.Policy->Kind == PolicyKind::TimeCritical && run.Hysteresis == 0.0)
     {
       tc = &run;
     }
@@ -1006,7 +1041,7 @@ std::vector<Goal> EvaluateGoals(
     std::string bestName = "-";
     for (const auto& run : runs)
     {
-      if (&run != tc && run.Policy->Kind != PolicyKind::None &&
+      if (&run != tc && run.Policy->Kind != PolicyKind::None && run.Hysteresis == 0.0 &&
         std::isfinite(run.Stats.PSNRMedian) && run.Stats.PSNRMedian > bestOther)
       {
         bestOther = run.Stats.PSNRMedian;
@@ -1030,9 +1065,27 @@ std::vector<Goal> EvaluateGoals(
   return goals;
 }
 
+/// Popping with and without hysteresis: share of the objects whose resolution changes per frame.
+void PrintPopping(const std::vector<PolicyRun>& runs)
+{
+  std::printf("\npopping (visible objects whose resolution changed from the frame before):\n"
+              "%-26s %10s %9s %8s %8s %9s\n",
+    "policy", "hysteresis", "changed", "mean ms", "<=110ms", "PSNR med");
+  for (const auto& run : runs)
+  {
+    const Statistics& s = run.Stats;
+    if (std::isfinite(s.ChangedMean) && run.Policy->Kind != PolicyKind::None)
+    {
+      std::printf("%-26s %10.2f %8.1f%% %8.1f %8s %9s\n", run.Label.c_str(), run.Hysteresis,
+        100.0 * s.ChangedMean, 1000.0 * s.Mean, PercentCell(s.ShareWithin).c_str(),
+        DecibelCell(s.PSNRMedian).c_str());
+    }
+  }
+}
+
 void PrintTable(const std::vector<PolicyRun>& runs, const std::vector<Goal>& goals, double target)
 {
-  std::printf("\n%-18s %8s %8s %8s %7s %8s %8s %9s %9s %8s %8s %10s\n", "policy", "mean ms",
+  std::printf("\n%-24s %8s %8s %8s %7s %8s %8s %9s %9s %8s %8s %10s\n", "policy", "mean ms",
     "median", "max ms", "CV", "<=110ms", "pred.err", "opt mean", "opt max", "PSNR dB",
     "PSNR med", "tris/frame");
   for (const auto& run : runs)
@@ -1042,7 +1095,7 @@ void PrintTable(const std::vector<PolicyRun>& runs, const std::vector<Goal>& goa
     const auto db = [isReference](double x) {
       return isReference ? std::string("ref") : DecibelCell(x);
     };
-    std::printf("%-18s %8.1f %8.1f %8.1f %7s %8s %8s %9s %9s %8s %8s %10.0f\n", run.Policy->Label,
+    std::printf("%-24s %8.1f %8.1f %8.1f %7s %8s %8s %9s %9s %8s %8s %10.0f\n", run.Label.c_str(),
       1000.0 * s.Mean, 1000.0 * s.Median, 1000.0 * s.Max, PercentCell(s.CV).c_str(),
       PercentCell(s.ShareWithin).c_str(), PercentCell(s.PredictionError).c_str(),
       MillisecondsCell(s.OptimizerMean, 3).c_str(), MillisecondsCell(s.OptimizerMax, 3).c_str(),
@@ -1055,17 +1108,18 @@ void PrintTable(const std::vector<PolicyRun>& runs, const std::vector<Goal>& goa
     1000.0 * target, PSNRCap);
   if (!runs.empty() && runs.front().Stats.HeavyFrames > 0)
   {
-    std::printf("\nframes whose full-resolution time exceeds the target (%d of %d):\n%-18s %8s "
+    std::printf("\nframes whose full-resolution time exceeds the target (%d of %d):\n%-24s %8s "
                 "%7s %8s %9s\n",
       runs.front().Stats.HeavyFrames, runs.front().Stats.Frames, "policy", "mean ms", "CV",
       "<=110ms", "PSNR med");
     for (const auto& run : runs)
     {
       const Statistics& s = run.Stats;
-      std::printf("%-18s %8.1f %6.1f%% %7.1f%% %9.2f\n", run.Policy->Label, 1000.0 * s.HeavyMean,
+      std::printf("%-24s %8.1f %6.1f%% %7.1f%% %9.2f\n", run.Label.c_str(), 1000.0 * s.HeavyMean,
         100.0 * s.HeavyCV, 100.0 * s.HeavyShareWithin, s.HeavyPSNRMedian);
     }
   }
+  PrintPopping(runs);
   if (!goals.empty())
   {
     PrintGoals("TimeCritical goals", goals, 40, 32);
@@ -1146,8 +1200,8 @@ void WriteJson(const Settings& settings, const ObjectMesh& object, const Scene& 
   {
     const PolicyRun& run = runs[p];
     const Statistics& s = run.Stats;
-    out << "    {\"name\": " << Quoted(run.Policy->Name) << ", \"label\": "
-        << Quoted(run.Policy->Label) << ", \"seconds\": " << Number(run.Seconds)
+    out << "    {\"name\": " << Quoted(run.Name) << ", \"label\": " << Quoted(run.Label)
+        << ", \"hysteresis\": " << Number(run.Hysteresis) << ", \"seconds\": " << Number(run.Seconds)
         << ", \"vertex_buffer_builds\": " << run.VertexBufferBuilds
         << ", \"lod_estimated_render_time\": [";
     for (size_t level = 0; level < run.LODEstimated.size(); ++level)
@@ -1166,13 +1220,16 @@ void WriteJson(const Settings& settings, const ObjectMesh& object, const Scene& 
         << ", \"heavy_frames\": " << s.HeavyFrames << ", \"heavy_mean\": " << Number(s.HeavyMean)
         << ", \"heavy_cv\": " << Number(s.HeavyCV)
         << ", \"heavy_share_within_110_percent\": " << Number(s.HeavyShareWithin)
-        << ", \"heavy_psnr_median\": " << Number(s.HeavyPSNRMedian) << "},\n";
+        << ", \"heavy_psnr_median\": " << Number(s.HeavyPSNRMedian)
+        << ", \"changed_mean\": " << Number(s.ChangedMean) << "},\n";
     const auto& f = run.Frames;
     out << "     \"frames\": {\n";
     out << "      " << PolicyFramesJsonFields(f, ",\n      ") << ",\n";
     out << "      \"renderer_measured\": "
         << Array(f, [](const FrameRecord& r) { return r.RendererMeasured; }) << ",\n";
     out << "      \"fixed\": " << Array(f, [](const FrameRecord& r) { return r.Fixed; }) << ",\n";
+    out << "      \"changed\": " << Array(f, [](const FrameRecord& r) { return r.Changed; })
+        << ",\n";
     out << "      \"margin\": " << Array(f, [](const FrameRecord& r) { return r.Margin; }) << ",\n";
     out << "      \"optimizer\": " << Array(f, [](const FrameRecord& r) { return r.Optimizer; })
         << ",\n";
@@ -1261,6 +1318,18 @@ int main(int argc, char* argv[])
         walk.WriteResolutionMaps();
       }
     }
+    // The same policies with hysteresis, in the same run (popping with and without).
+    walk.Hysteresis = settings.Hysteresis;
+    for (const PolicyInfo* policy : settings.Policies)
+    {
+      if (settings.Hysteresis > 0.0 && policy->RendererPolicy >= 0 &&
+        policy->Kind != PolicyKind::None)
+      {
+        std::cerr << "policy " << policy->Name << " with hysteresis " << settings.Hysteresis
+                  << ": " << settings.Frames << " frames\n";
+        runs.push_back(walk.Run(*policy));
+      }
+    }
     std::cerr << "noise floor: one frame rendered again and again...\n";
     walk.MeasureNoiseFloor();
     load[1] = LoadAverages()[0];
@@ -1294,14 +1363,14 @@ int main(int argc, char* argv[])
       {
         std::printf("note: %s: the multiresolution mapper rebuilt its vertex buffers %lld times "
                     "during the timed frames\n",
-          run.Policy->Name, run.VertexBufferBuilds);
+          run.Name.c_str(), run.VertexBufferBuilds);
       }
       if (std::isfinite(run.Stats.RendererVsWall) &&
         std::abs(run.Stats.RendererVsWall) > 0.05)
       {
         std::printf("note: %s: the renderer's measured frame time differs from the wall clock "
                     "by %.1f%% on average\n",
-          run.Policy->Name, 100.0 * run.Stats.RendererVsWall);
+          run.Name.c_str(), 100.0 * run.Stats.RendererVsWall);
       }
     }
     PrintTable(runs, goals, settings.Target);

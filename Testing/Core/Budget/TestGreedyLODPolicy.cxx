@@ -155,7 +155,6 @@ TEST(GreedyLODPolicy, HysteresisPreventsFlipFlopping)
     std::fill(p.MinResolution.begin(), p.MinResolution.end(), 0.01);
     scene.Target = scene.FixedTime + 40 * 0.01 * 0.25 + 20 * 0.01 * 0.25; // 20 at 0.5, 20 at 0.25
     GreedyLODPolicy policy;
-    policy.SetHysteresis(hysteresis);
     std::vector<double> r(40);
     std::mt19937_64 rng(7);
     std::uniform_real_distribution<double> jitter(0.98, 1.02);
@@ -166,7 +165,9 @@ TEST(GreedyLODPolicy, HysteresisPreventsFlipFlopping)
       {
         c = jitter(rng);
       }
-      const auto result = policy.Select(scene.Input(frame > 0), r.data());
+      auto input = scene.Input(frame > 0);
+      input.Hysteresis = hysteresis;
+      const auto result = policy.Select(input, r.data());
       EXPECT_LE(result.PredictedFrameTime, scene.Target + 1e-12);
       if (frame > 0)
       {

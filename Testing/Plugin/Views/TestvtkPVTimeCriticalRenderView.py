@@ -81,6 +81,43 @@ class vtkPVTimeCriticalRenderViewTests(ViewTests, unittest.TestCase):
         view.TargetFrameTime = -5  # the renderer reports it and keeps 100 ms
         self.assertAlmostEqual(renderer.GetTargetFrameTime(), 0.1)
 
+    def test_hysteresis_reaches_the_renderer_and_round_trips_a_state_file(self):
+        view = self.view()
+        renderer = view.GetClientSideObject().GetRenderer()
+        self.assertEqual(view.Hysteresis, 0.0)
+        self.assertEqual(renderer.GetHysteresis(), 0.0)
+        view.Hysteresis = 0.35
+        self.assertAlmostEqual(renderer.GetHysteresis(), 0.35)
+        self.assertAlmostEqual(view.GetClientSideObject().GetHysteresis(), 0.35)
+        view.Hysteresis = 1.5  # the renderer reports it and keeps 0.35
+        self.assertAlmostEqual(renderer.GetHysteresis(), 0.35)
+        view.Hysteresis = 0.35
+        state = os.path.join(OUT, "hysteresis.pvsm")
+        SaveState(state)
+        ResetSession()
+        self.created = []
+        LoadState(state)
+        loaded = [v for v in GetViews() if v.GetXMLName() == "TimeCriticalRenderView"]
+        self.assertEqual(len(loaded), 1)
+        self.assertAlmostEqual(loaded[0].Hysteresis, 0.35)
+        self.assertAlmostEqual(loaded[0].GetClientSideObject().GetRenderer().GetHysteresis(), 0.35)
+        ResetSession()
+
+    def test_focus_properties_reach_the_renderer(self):
+        view = self.view()
+        renderer = view.GetClientSideObject().GetRenderer()
+        self.assertEqual(view.FocusMode, "Fixed Point")
+        self.assertEqual(view.FocusFalloff, "Degradation Model Default")
+        view.FocusMode = "Cursor"
+        view.FocusFalloff = "Linear"
+        self.assertEqual(renderer.GetFocusMode(), renderer.CURSOR)
+        self.assertEqual(renderer.GetFocusFalloff(), renderer.LINEAR)
+        view.FocusMode = "Screen Center"
+        view.FocusFalloff = "Reddy"
+        self.assertEqual(renderer.GetFocusMode(), renderer.SCREEN_CENTER)
+        self.assertEqual(renderer.GetFocusFalloff(), renderer.REDDY)
+        self.assertEqual(view.GetClientSideObject().GetFocusMode(), renderer.SCREEN_CENTER)
+
     def test_hierarchy_cache_settings_apply_to_the_process_cache(self):
         view = self.view()
         server = view.GetClientSideObject()
