@@ -156,8 +156,8 @@ bool CarriesHierarchy(vtkPolyData* leaf, LeafHierarchy hierarchy)
     (hierarchy != LeafHierarchy::MergeTree || vtkMergeTreeFieldData::HasMergeTreeArrays(leaf));
 }
 
-LeafBuildResult BuildLeafHierarchy(
-  vtkPolyData* leaf, LeafHierarchy hierarchy, const LeafBuildProgress& progress)
+LeafBuildResult BuildLeafHierarchy(vtkPolyData* leaf, LeafHierarchy hierarchy,
+  const LeafBuildProgress& progress, double pairContractionDistance)
 {
   LeafBuildResult result;
   if (!leaf)
@@ -180,7 +180,9 @@ LeafBuildResult BuildLeafHierarchy(
   }
   else
   {
-    builder = vtkSmartPointer<vtkTOMBuilder>::New();
+    auto tom = vtkSmartPointer<vtkTOMBuilder>::New();
+    tom->SetPairContractionDistance(pairContractionDistance);
+    builder = tom;
   }
   vtkNew<BuildObserver> observer;
   observer->Result = &result;

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
  * Builds the hierarchy of one polydata leaf (vtkTOMBuilder or
- * vtkMergeTreeBuilder with default settings), on whatever thread calls it:
+ * vtkMergeTreeBuilder with default settings, except the TOM's pair
+ * contraction distance), on whatever thread calls it:
  * the leaf is only read (through VTK objects of the build's own, sharing its
  * values, so that builds may share a leaf's objects across threads), every
  * message of the builder is collected rather than printed, and progress and
@@ -68,8 +69,10 @@ vtkSmartPointer<vtkPolyData> CopyForAnotherThread(vtkPolyData* leaf);
 /// MergeTree also merge-tree arrays), so it needs no build.
 bool CarriesHierarchy(vtkPolyData* leaf, LeafHierarchy hierarchy);
 
-LeafBuildResult BuildLeafHierarchy(
-  vtkPolyData* leaf, LeafHierarchy hierarchy, const LeafBuildProgress& progress = nullptr);
+/// `pairContractionDistance`: vtkTOMBuilder::SetPairContractionDistance (a
+/// TotallyOrderedMesh only; vtkMergeTreeBuilder has no such setting).
+LeafBuildResult BuildLeafHierarchy(vtkPolyData* leaf, LeafHierarchy hierarchy,
+  const LeafBuildProgress& progress = nullptr, double pairContractionDistance = 0.0);
 }
 
 #endif

@@ -26,6 +26,7 @@
 #include <atomic>
 #include <cctype>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <iomanip>
 #include <list>
@@ -437,7 +438,11 @@ bool vtkHierarchyBuildCache::Key::operator<(const Key& other) const
   {
     return this->Cells < other.Cells;
   }
-  return this->Hierarchy < other.Hierarchy;
+  if (this->Hierarchy != other.Hierarchy)
+  {
+    return this->Hierarchy < other.Hierarchy;
+  }
+  return this->PairContractionDistance < other.PairContractionDistance;
 }
 
 vtkHierarchyBuildCache::vtkHierarchyBuildCache()
@@ -558,12 +563,15 @@ void vtkHierarchyBuildCache::ResetStatistics()
 }
 
 //------------------------------------------------------------------------------
-vtkHierarchyBuildCache::Key vtkHierarchyBuildCache::MakeKey(vtkPolyData* leaf, int hierarchy)
+vtkHierarchyBuildCache::Key vtkHierarchyBuildCache::MakeKey(
+  vtkPolyData* leaf, int hierarchy, double pairContractionDistance)
 {
   Key key;
   key.ContentHash = timecritical::HashLeafContent(leaf);
   key.Cells = leaf->GetNumberOfCells();
   key.Hierarchy = hierarchy;
+  // vtkMergeTreeBuilder ignores the distance: its builds are the same.
+  key.PairContractionDistance = hierarchy == 1 ? 0.0 : pairContractionDistance;
   return key;
 }
 
@@ -572,6 +580,12 @@ std::string vtkHierarchyBuildCache::KeyText(const Key& key)
   std::ostringstream text;
   text << (key.Hierarchy == 1 ? "mergetree" : "tom") << "-" << Hex(key.ContentHash) << "-"
        << key.Cells << "-v" << static_cast<int>(FORMAT_VERSION);
+  if (key.PairContractionDistance != 0.0)
+  {
+    uint64_t bits = 0; // exact, and a valid file name
+    std::memcpy(&bits, &key.PairContractionDistance, sizeof(bits));
+    text << "-pairs" << Hex(bits);
+  }
   return text.str();
 }
 

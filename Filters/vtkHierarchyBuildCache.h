@@ -6,8 +6,10 @@
  * Holds the leaves that vtkMultiresolutionHierarchyBuilder (and the
  * background builds of the multiresolution mapper) built, keyed by the
  * content they were built from: the leaf's content hash
- * (timecritical::HashLeafContent), its cell count, the hierarchy kind and
- * FORMAT_VERSION (the file format and the builders' settings). A leaf whose
+ * (timecritical::HashLeafContent), its cell count, the hierarchy kind, the
+ * one builder setting that can differ from the default (the TOM's pair
+ * contraction distance) and FORMAT_VERSION (the file format and the other
+ * builder settings). A leaf whose
  * content comes back (an animation looped, a contour value set back, a block
  * unchanged by an edit) is then found instead of built.
  *
@@ -124,18 +126,28 @@ public:
     uint64_t ContentHash = 0; ///< timecritical::HashLeafContent of the input leaf
     vtkIdType Cells = 0;      ///< the input leaf's cell count
     int Hierarchy = 0;        ///< vtkMultiresolutionHierarchyBuilder::Hierarchies
+    /// vtkTOMBuilder::PairContractionDistance of the build (0 for merge
+    /// trees, whose builder ignores it)
+    double PairContractionDistance = 0.0;
     bool operator==(const Key& other) const
     {
       return this->ContentHash == other.ContentHash && this->Cells == other.Cells &&
-        this->Hierarchy == other.Hierarchy;
+        this->Hierarchy == other.Hierarchy &&
+        this->PairContractionDistance == other.PairContractionDistance;
     }
     bool operator<(const Key& other) const;
   };
 
-  /// The key of an input leaf (hashes its content: not free, several GB/s).
-  static Key MakeKey(vtkPolyData* leaf, int hierarchy);
+  /**
+   * The key of an input leaf (hashes its content: not free, several GB/s)
+   * built as `hierarchy` with that pair contraction distance (left out of
+   * merge-tree keys).
+   */
+  static Key MakeKey(vtkPolyData* leaf, int hierarchy, double pairContractionDistance = 0.0);
 
-  /// The key as text: the file name's stem, also stored in the file.
+  /// The key as text: the file name's stem, also stored in the file (a
+  /// non-zero pair contraction distance adds its bits, so files of builds
+  /// without pairs keep their names).
   static std::string KeyText(const Key& key);
 
   /**

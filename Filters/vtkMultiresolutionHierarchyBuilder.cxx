@@ -2,6 +2,7 @@
 #include "vtkMultiresolutionHierarchyBuilder.h"
 
 #include "LeafHierarchyBuild.h"
+#include "RefinementSettingChecks.h"
 #include "vtkHierarchyBuildCache.h"
 
 #include "vtkCompositeDataIterator.h"
@@ -146,6 +147,16 @@ vtkMultiresolutionHierarchyBuilder::vtkMultiresolutionHierarchyBuilder()
 
 vtkMultiresolutionHierarchyBuilder::~vtkMultiresolutionHierarchyBuilder() = default;
 
+void vtkMultiresolutionHierarchyBuilder::SetPairContractionDistance(double distance)
+{
+  if (timecritical::SetCheckedSetting(this,
+        timecritical::CheckRange("PairContractionDistance", distance, 0.0, 1.0), distance,
+        this->PairContractionDistance))
+  {
+    this->Modified();
+  }
+}
+
 void vtkMultiresolutionHierarchyBuilder::SetNumberOfThreads(int threads)
 {
   if (threads < 0)
@@ -288,7 +299,8 @@ void vtkMultiresolutionHierarchyBuilder::ProcessLeaves(std::vector<Leaf>& leaves
     toHash.size(), threads,
     [&](size_t i) {
       Leaf& leaf = leaves[toHash[i]];
-      leaf.CacheKey = vtkHierarchyBuildCache::MakeKey(leaf.Input, this->Hierarchy);
+      leaf.CacheKey = vtkHierarchyBuildCache::MakeKey(
+        leaf.Input, this->Hierarchy, this->PairContractionDistance);
     },
     [] {});
 
@@ -405,7 +417,8 @@ void vtkMultiresolutionHierarchyBuilder::RunJobs(
         return;
       }
       timecritical::LeafBuildResult built =
-        timecritical::BuildLeafHierarchy(job.Input, hierarchy, progress);
+        timecritical::BuildLeafHierarchy(
+          job.Input, hierarchy, progress, job.CacheKey.PairContractionDistance);
       job.Messages = std::move(built.Messages);
       if (built.Hierarchy)
       {
@@ -492,6 +505,7 @@ void vtkMultiresolutionHierarchyBuilder::PrintSelf(ostream& os, vtkIndent indent
   this->Superclass::PrintSelf(os, indent);
   os << indent << "Hierarchy: "
      << (this->Hierarchy == MERGE_TREE ? "MERGE_TREE" : "TOTALLY_ORDERED_MESH") << "\n";
+  os << indent << "PairContractionDistance: " << this->PairContractionDistance << "\n";
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
   os << indent << "NumberOfBuiltLeaves: " << this->NumberOfBuiltLeaves << "\n";
   os << indent << "NumberOfReusedLeaves: " << this->NumberOfReusedLeaves << "\n";

@@ -74,6 +74,19 @@ public:
 
   ///@{
   /**
+   * vtkTOMBuilder::SetPairContractionDistance of the TOMs this filter builds
+   * (a fraction of each leaf's bounding-box diagonal in [0, 1]; 0, default,
+   * off): separate parts of a leaf join at its coarsest resolutions. Part of
+   * the cache key (vtkHierarchyBuildCache::Key), so a changed setting never
+   * reuses a build made with another. Merge trees ignore it. NaN, infinite
+   * or out-of-range values are an error and leave the setting unchanged.
+   */
+  void SetPairContractionDistance(double distance);
+  vtkGetMacro(PairContractionDistance, double);
+  ///@}
+
+  ///@{
+  /**
    * Leaves of the last execution: built, reused (from the last execution,
    * the memory cache or an identical leaf), loaded from the disk cache,
    * passed as they came.
@@ -133,6 +146,7 @@ protected:
 
   int Hierarchy = TOTALLY_ORDERED_MESH;
   int NumberOfThreads = 0;
+  double PairContractionDistance = 0.0;
   vtkIdType NumberOfBuiltLeaves = 0;
   vtkIdType NumberOfReusedLeaves = 0;
   vtkIdType NumberOfLoadedLeaves = 0;

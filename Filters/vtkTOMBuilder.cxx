@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkTOMBuilder.h"
 
+#include "RefinementSettingChecks.h"
 #include "TOMBuilder.h"
 #include "TOMFilterSupport.h"
 #include "vtkTOMFieldData.h"
@@ -17,6 +18,18 @@ vtkStandardNewMacro(vtkTOMBuilder);
 vtkTOMBuilder::vtkTOMBuilder() = default;
 vtkTOMBuilder::~vtkTOMBuilder() = default;
 
+void vtkTOMBuilder::SetPairContractionDistance(double distance)
+{
+  // Not clamped: a negative distance or one beyond the diagonal is a mistake
+  // (1 already reaches every part).
+  if (timecritical::SetCheckedSetting(this,
+        timecritical::CheckRange("PairContractionDistance", distance, 0.0, 1.0), distance,
+        this->PairContractionDistance))
+  {
+    this->Modified();
+  }
+}
+
 int vtkTOMBuilder::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
@@ -25,6 +38,7 @@ int vtkTOMBuilder::RequestData(
   this->NumberOfDroppedCells = 0;
   this->NumberOfMergedPoints = 0;
   this->BuildTime = 0.0;
+  this->NumberOfJoinedParts = 0;
   if (!input || !output)
   {
     vtkErrorMacro("Missing input or output polydata.");
@@ -48,6 +62,7 @@ int vtkTOMBuilder::RequestData(
 
   timecritical::TOMBuildOptions options;
   this->FillCollapseOptions(options);
+  options.PairContractionDistance = this->PairContractionDistance;
 
   timecritical::TOMBuildResult result;
   try
@@ -68,7 +83,15 @@ int vtkTOMBuilder::RequestData(
   timecritical::WriteOrderedSurface(this, input, surface, result, output);
   this->NumberOfDroppedCells = surface.NumberOfDroppedCells;
   vtkTOMFieldData::Write(result.Mesh, output);
+  this->NumberOfJoinedParts = static_cast<vtkIdType>(result.JoinedParts);
   this->BuildTime = vtkTimerLog::GetUniversalTime() - start;
   this->UpdateProgress(1.0);
   return 1;
+}
+
+void vtkTOMBuilder::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "PairContractionDistance: " << this->PairContractionDistance << "\n";
+  os << indent << "NumberOfJoinedParts: " << this->NumberOfJoinedParts << "\n";
 }

@@ -103,14 +103,16 @@ vtkHierarchyBuildQueue* vtkMultiresolutionPolyDataMapper::GetBuildQueue()
     in.Queue = vtkSmartPointer<vtkHierarchyBuildQueue>::New();
     // The process's hierarchy cache (shared with vtkMultiresolutionHierarchyBuilder
     // and every other mapper): a time step or an edit shown again builds nothing.
+    // Background builds use the builders' defaults: no pair contraction (0).
     vtkHierarchyBuildCache* cache = vtkHierarchyBuildCache::GetSharedInstance();
     in.Queue->SetResultStore(
       [cache](uint64_t key, vtkIdType cells, int hierarchy) {
-        return cache->Find(vtkHierarchyBuildCache::Key{ key, cells, hierarchy });
+        return cache->Find(vtkHierarchyBuildCache::Key{ key, cells, hierarchy, 0.0 });
       },
       [cache](uint64_t key, vtkIdType cells, int hierarchy, vtkPolyData* output,
         std::vector<std::string>& warnings) {
-        cache->Insert(vtkHierarchyBuildCache::Key{ key, cells, hierarchy }, output, &warnings);
+        cache->Insert(
+          vtkHierarchyBuildCache::Key{ key, cells, hierarchy, 0.0 }, output, &warnings);
       });
   }
   return in.Queue;

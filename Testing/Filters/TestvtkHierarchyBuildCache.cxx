@@ -111,6 +111,39 @@ TEST(HierarchyBuildCache, KeysFollowContentCellsAndHierarchy)
     0u);
 }
 
+TEST(HierarchyBuildCache, KeysFollowThePairContractionDistance)
+{
+  auto sphere = tt::MakeSphere(12);
+  const Key plain = vtkHierarchyBuildCache::MakeKey(sphere, 0);
+  const Key off = vtkHierarchyBuildCache::MakeKey(sphere, 0, 0.0);
+  const Key on = vtkHierarchyBuildCache::MakeKey(sphere, 0, 0.05);
+  const Key other = vtkHierarchyBuildCache::MakeKey(sphere, 0, 0.1);
+  EXPECT_TRUE(plain == off);
+  EXPECT_FALSE(on == off);
+  EXPECT_FALSE(on == other);
+  EXPECT_TRUE(on == vtkHierarchyBuildCache::MakeKey(sphere, 0, 0.05));
+  EXPECT_EQ(on.PairContractionDistance, 0.05);
+  // Ordered (the maps of builds): distinct keys compare one way only.
+  EXPECT_NE(on < off, off < on);
+  EXPECT_NE(on < other, other < on);
+  // Files: builds without pairs keep their names; each distance has its own.
+  const std::string offText = vtkHierarchyBuildCache::KeyText(off);
+  const std::string onText = vtkHierarchyBuildCache::KeyText(on);
+  EXPECT_EQ(offText.find("pairs"), std::string::npos) << offText;
+  EXPECT_EQ(onText.rfind(offText + "-pairs", 0), 0u) << onText;
+  EXPECT_NE(onText, vtkHierarchyBuildCache::KeyText(other));
+  // vtkMergeTreeBuilder ignores the distance: one key for all distances.
+  EXPECT_TRUE(vtkHierarchyBuildCache::MakeKey(sphere, 1, 0.05) ==
+    vtkHierarchyBuildCache::MakeKey(sphere, 1));
+
+  // A build stored for one distance is not found for another.
+  vtkNew<vtkHierarchyBuildCache> cache;
+  cache->Insert(on, BuildTOM(sphere));
+  EXPECT_GT(PointsOf(cache, on), 0);
+  EXPECT_EQ(PointsOf(cache, off), -1);
+  EXPECT_EQ(PointsOf(cache, other), -1);
+}
+
 TEST(HierarchyBuildCache, EvictsTheLeastRecentlyUsedUnderTheLimit)
 {
   std::vector<Key> keys;

@@ -627,6 +627,72 @@ TEST_F(MultiresolutionHierarchyBuilder, AnAbortCancelsThePendingBuilds)
   }
 }
 
+TEST_F(MultiresolutionHierarchyBuilder, PairContractionDistanceReachesTheBuildAndTheKey)
+{
+  // Two spheres of radius 0.5 with a gap of 0.5 (a diagonal of 2.9): joined
+  // with pairs within 0.6 of it.
+  auto first = MakeSphere(16);
+  auto pair = vtkSmartPointer<vtkPolyData>::New();
+  {
+    vtkNew<vtkPoints> points;
+    vtkNew<vtkCellArray> polys;
+    for (double shift : { 0.0, 1.5 })
+    {
+      const vtkIdType offset = points->GetNumberOfPoints();
+      for (vtkIdType p = 0; p < first->GetNumberOfPoints(); ++p)
+      {
+        double x[3];
+        first->GetPoint(p, x);
+        points->InsertNextPoint(x[0] + shift, x[1], x[2]);
+      }
+      for (vtkIdType c = 0; c < first->GetNumberOfCells(); ++c)
+      {
+        vtkIdType n = 0;
+        const vtkIdType* ids = nullptr;
+        first->GetCellPoints(c, n, ids);
+        polys->InsertNextCell({ ids[0] + offset, ids[1] + offset, ids[2] + offset });
+      }
+    }
+    pair->SetPoints(points);
+    pair->SetPolys(polys);
+  }
+  auto baseVertices = [](vtkMultiresolutionHierarchyBuilder* builder) {
+    vtkNew<vtkTOMFieldData> reader;
+    EXPECT_TRUE(reader->Read(vtkPolyData::SafeDownCast(builder->GetOutputDataObject(0))))
+      << reader->GetErrorMessage();
+    return reader->GetBaseVertexCount();
+  };
+  vtkNew<vtkMultiresolutionHierarchyBuilder> builder;
+  EXPECT_EQ(builder->GetPairContractionDistance(), 0.0);
+  builder->SetInputData(pair);
+  builder->Update();
+  ASSERT_EQ(builder->GetNumberOfBuilds(), 1);
+  EXPECT_EQ(baseVertices(builder), 8) << "a tetrahedron per sphere";
+
+  // A changed distance is a new build (not the last execution's, not the cache's).
+  builder->SetPairContractionDistance(0.6);
+  builder->Update();
+  EXPECT_EQ(builder->GetNumberOfBuilds(), 2);
+  EXPECT_EQ(builder->GetNumberOfBuiltLeaves(), 1);
+  EXPECT_EQ(baseVertices(builder), 4) << "the spheres joined";
+
+  // Back to off: the first build, from the cache.
+  builder->SetPairContractionDistance(0.0);
+  builder->Update();
+  EXPECT_EQ(builder->GetNumberOfBuilds(), 2);
+  EXPECT_EQ(builder->GetNumberOfReusedLeaves(), 1);
+  EXPECT_EQ(baseVertices(builder), 8);
+
+  // Merge trees ignore it: one build for both distances.
+  builder->SetHierarchy(vtkMultiresolutionHierarchyBuilder::MERGE_TREE);
+  builder->Update();
+  EXPECT_EQ(builder->GetNumberOfBuilds(), 3);
+  builder->SetPairContractionDistance(0.6);
+  builder->Update();
+  EXPECT_EQ(builder->GetNumberOfBuilds(), 3);
+  EXPECT_EQ(builder->GetNumberOfReusedLeaves(), 1);
+}
+
 TEST_F(MultiresolutionHierarchyBuilder, BadSettingsGiveClearErrors)
 {
   vtkNew<vtkMultiresolutionHierarchyBuilder> builder;
@@ -635,6 +701,15 @@ TEST_F(MultiresolutionHierarchyBuilder, BadSettingsGiveClearErrors)
   ASSERT_EQ(log.Errors.size(), 1u);
   EXPECT_NE(log.Errors[0].find("NumberOfThreads must be >= 0"), std::string::npos) << log.Errors[0];
   EXPECT_EQ(builder->GetNumberOfThreads(), 0);
+  builder->SetPairContractionDistance(0.5);
+  for (double bad : { -1.0, 2.0, std::numeric_limits<double>::quiet_NaN() })
+  {
+    builder->SetPairContractionDistance(bad);
+    EXPECT_EQ(builder->GetPairContractionDistance(), 0.5) << bad;
+  }
+  ASSERT_EQ(log.Errors.size(), 4u);
+  EXPECT_NE(log.Errors[3].find("PairContractionDistance"), std::string::npos) << log.Errors[3];
+  log.Errors.clear();
   // The cache's settings are checked by the cache.
   vtkNew<vtkHierarchyBuildCache> cache;
   builder->SetCache(cache);

@@ -183,11 +183,14 @@ std::vector<uint8_t> RefineTail(const TriangleMesh& piece)
   return tail;
 }
 
-/// A TOM of the piece with queries at a few resolutions.
-std::vector<uint8_t> TOMSeed(const TriangleMesh& piece)
+/// A TOM of the piece (separate parts joined within `pairDistance` of the
+/// diagonal; 0: not) with queries at a few resolutions.
+std::vector<uint8_t> TOMSeed(const TriangleMesh& piece, double pairDistance = 0.0)
 {
+  TOMBuildOptions options;
+  options.PairContractionDistance = pairDistance;
   const TOMBuildResult built =
-    TOMBuilder().Build(piece.Points.data(), piece.NumberOfPoints(), piece.Triangles.data(),
+    TOMBuilder(options).Build(piece.Points.data(), piece.NumberOfPoints(), piece.Triangles.data(),
       piece.NumberOfTriangles());
   TOMInput tom;
   tom.Substitution = built.Mesh.Substitution;
@@ -241,6 +244,44 @@ void WritePiece(
   counts.Bytes += bytes.size();
   ++counts.Pieces;
 }
+
+/// `parts` copies of a piece side by side along x, `spacing` apart.
+TriangleMesh Copies(const TriangleMesh& piece, int parts, double spacing)
+{
+  TriangleMesh out;
+  for (int c = 0; c < parts; ++c)
+  {
+    const uint32_t offset = static_cast<uint32_t>(out.NumberOfPoints());
+    for (size_t p = 0; p < piece.NumberOfPoints(); ++p)
+    {
+      out.Points.insert(out.Points.end(), { piece.Points[3 * p] + spacing * c,
+                                            piece.Points[3 * p + 1], piece.Points[3 * p + 2] });
+    }
+    for (uint32_t id : piece.Triangles)
+    {
+      out.Triangles.push_back(id + offset);
+    }
+  }
+  return out;
+}
+
+/// A piece of separate parts, with pair contraction on: the builder's input
+/// (tail byte 6, fuzz_builder.cxx) and the TOM it makes.
+void WritePairPiece(
+  const std::string& output, const std::string& name, const TriangleMesh& piece, Counts& counts)
+{
+  MeshInput input = ToMeshInput(piece, PreserveBoundaries | PreserveFeatureEdges);
+  input.Tail = { 48, 0, 0, 0, 0, 0, 32 }; // pairs within half the diagonal
+  const std::vector<std::pair<std::string, std::vector<uint8_t>>> seeds = {
+    { "fuzz_builder/" + name + "-pairs", EncodeMesh(input) },
+    { "fuzz_tom/" + name + "-pairs", TOMSeed(piece, 0.5) },
+  };
+  for (const auto& seed : seeds)
+  {
+    WriteSeed(output + "/" + seed.first, seed.second);
+    counts.Bytes += seed.second.size();
+  }
+}
 }
 
 int main(int argc, char* argv[])
@@ -267,6 +308,9 @@ int main(int argc, char* argv[])
     WritePiece(output, "cube", testing::MakeCube(1), counts);
     const TriangleMesh sphere = testing::MakeSphere(0);
     WritePiece(output, "patch", CutPiece(sphere, MapEdges(sphere), 0, 5), counts);
+    // Separate parts for pair contraction: closed spheres, open patches.
+    WritePairPiece(output, "spheres", Copies(testing::MakeSphere(1), 5, 2.5), counts);
+    WritePairPiece(output, "patches", Copies(testing::MakeGrid(3, 3), 4, 1.5), counts);
 
     // Pieces of the shared meshes.
     int meshes = 0;

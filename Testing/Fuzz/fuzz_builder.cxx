@@ -3,6 +3,9 @@
 // decoded from the input, format in FuzzFormat.h: any ids, NaN and infinite
 // coordinates, duplicate points and triangles, degenerate triangles) and
 // arbitrary in-range settings, into TOMBuilder and/or MergeTreeBuilder.
+// TOMBuilder also joins separate parts (pair contraction) at a distance the
+// input chooses (tail byte 6), and its finer levels must then be those of the
+// build without pairs.
 //
 // The documented contract: std::invalid_argument exactly when an id is out
 // of range or a point used by a non-degenerate triangle is not finite or
@@ -86,6 +89,46 @@ TOMBuildOptions CollapseOptions(const MeshInput& mesh, int* progressCalls, int a
   return options;
 }
 
+/**
+ * Tail byte 6: TOMBuilder's PairContractionDistance: 0 off, 1..254 a
+ * fraction of the diagonal up to ~4 (beyond 1 every part is in reach), 255
+ * NaN (then TOMBuilder must throw std::invalid_argument).
+ */
+double PairDistance(const MeshInput& mesh)
+{
+  const uint8_t byte = TailByte(mesh, 6);
+  return byte == 255 ? std::nan("") : byte / 64.0;
+}
+
+/**
+ * Pair contraction only adds joins below the coarsest level without pairs:
+ * every level above it is the build without pairs (same vertex at each
+ * step, same triangle counts and errors), and nothing joins without pairs.
+ */
+void CheckPairsKeepFinerLevels(
+  const TOMBuildResult& on, const MeshInput& mesh, const TOMBuildOptions& options)
+{
+  TOMBuildOptions offOptions = options;
+  offOptions.PairContractionDistance = 0.0;
+  offOptions.Progress = nullptr;
+  const TOMBuildResult off = TOMBuilder(offOptions).Build(
+    mesh.Points.data(), mesh.NumberOfPoints(), mesh.Triangles.data(), mesh.NumberOfTriangles());
+  FUZZ_REQUIRE(off.JoinedParts == 0, "no part joins without pairs");
+  const uint32_t n = off.Mesh.GetNumberOfVertices();
+  FUZZ_REQUIRE(on.Mesh.GetNumberOfVertices() == n, "pairs keep every vertex");
+  FUZZ_REQUIRE(on.Mesh.BaseVertexCount <= off.Mesh.BaseVertexCount, "pairs only go coarser");
+  FUZZ_REQUIRE(on.JoinedParts > 0 || on.Mesh.BaseVertexCount == off.Mesh.BaseVertexCount,
+    "the coarsest level moves only by joins");
+  for (uint32_t i = off.Mesh.BaseVertexCount; i <= n; ++i)
+  {
+    FUZZ_REQUIRE(i == n || on.VertexOrder[i] == off.VertexOrder[i],
+      "pairs keep the vertex order above the coarsest level without them");
+    FUZZ_REQUIRE(on.TrianglesAtVertexCount[i] == off.TrianglesAtVertexCount[i] &&
+        on.VertexCountError[i] == off.VertexCountError[i],
+      "pairs keep the triangle counts and errors above the coarsest level without them");
+  }
+}
+
 void CheckAborted(const TOMBuildResult& result)
 {
   FUZZ_REQUIRE(result.Mesh.GetNumberOfVertices() == 0 && result.Mesh.GetNumberOfTriangles() == 0,
@@ -106,12 +149,16 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
   if (!mergeTree || both)
   {
     int calls = 0;
-    const TOMBuilder builder(CollapseOptions(mesh, &calls, abortAfter));
+    TOMBuildOptions options = CollapseOptions(mesh, &calls, abortAfter);
+    options.PairContractionDistance = PairDistance(mesh);
+    const bool badDistance = std::isnan(options.PairContractionDistance);
+    const TOMBuilder builder(options);
     try
     {
       const TOMBuildResult result = builder.Build(
         mesh.Points.data(), mesh.NumberOfPoints(), mesh.Triangles.data(), mesh.NumberOfTriangles());
       FUZZ_REQUIRE(!invalid, "TOMBuilder accepted out-of-range ids or bad coordinates");
+      FUZZ_REQUIRE(!badDistance, "TOMBuilder accepted a NaN PairContractionDistance");
       if (result.Aborted)
       {
         FUZZ_REQUIRE(abortAfter > 0, "aborted by nobody");
@@ -120,11 +167,20 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
       else
       {
         CheckBuildResult(result, mesh);
+        if (options.PairContractionDistance > 0.0)
+        {
+          CheckPairsKeepFinerLevels(result, mesh, options);
+        }
+        else
+        {
+          FUZZ_REQUIRE(result.JoinedParts == 0, "no part joins without pairs");
+        }
       }
     }
     catch (const std::invalid_argument& e)
     {
-      FUZZ_REQUIRE(invalid, std::string("TOMBuilder rejected a valid mesh: ") + e.what());
+      FUZZ_REQUIRE(invalid || badDistance,
+        std::string("TOMBuilder rejected a valid mesh: ") + e.what());
     }
   }
   if (mergeTree || both)

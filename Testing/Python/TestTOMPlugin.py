@@ -250,6 +250,56 @@ class FeatureEdgeProperties(unittest.TestCase):
         self.assertTrue(self.same(self.tom(FeatureWeight=0.0), self.tom(FeatureWeight=-3.0)))
 
 
+class PairContractionProperty(unittest.TestCase):
+    """Pair Contraction Distance reaches the filter: 27 separate spheres join
+    at the coarsest resolution (the C++ tests check the same on the filter)."""
+
+    def setUp(self):
+        from vtkmodules.vtkFiltersCore import vtkAppendPolyData
+        from vtkmodules.vtkFiltersSources import vtkSphereSource
+        from vtkmodules.vtkIOXML import vtkXMLPolyDataWriter
+        append = vtkAppendPolyData()
+        for i in range(27):
+            sphere = vtkSphereSource()
+            sphere.SetThetaResolution(8)
+            sphere.SetPhiResolution(8)
+            sphere.SetCenter(1.5 * (i % 3), 1.5 * (i // 3 % 3), 1.5 * (i // 9))
+            append.AddInputConnection(sphere.GetOutputPort())
+        append.Update()
+        path = os.path.join(output_dir("TestTOMPlugin"), "spheres.vtp")
+        writer = vtkXMLPolyDataWriter()
+        writer.SetFileName(path)
+        writer.SetInputData(append.GetOutput())
+        writer.SetDataModeToBinary()  # appended mode: see test_save_and_reload
+        self.assertEqual(writer.Write(), 1)
+        self.reader = XMLPolyDataReader(FileName=[path])
+        self.tom_proxy = BuildTotallyOrderedMesh(Input=self.reader)
+
+    def tearDown(self):
+        Delete(self.tom_proxy)
+        Delete(self.reader)
+
+    def counts(self):
+        """(base vertices, base triangles) of the TOM."""
+        _, _, base_n, base_t = (int(v) for v in arrays(fetch(self.tom_proxy))["TOMCounts"])
+        return base_n, base_t
+
+    def test_property_reaches_the_filter(self):
+        self.assertEqual(self.tom_proxy.PairContractionDistance, 0.0)
+        self.assertEqual(self.counts(), (27 * 4, 27 * 4), "off: a tetrahedron per sphere")
+        self.tom_proxy.PairContractionDistance = 0.5
+        base_n, base_t = self.counts()
+        self.assertEqual(base_n, 4)
+        self.assertLessEqual(base_t, 4)
+        if not servermanager.ActiveConnection.IsRemote():
+            # The filter's own PrintSelf (the object may be wrapped as its base class).
+            state = str(self.tom_proxy.GetClientSideObject())
+            self.assertIn("PairContractionDistance: 0.5\n", state)
+            self.assertIn("NumberOfJoinedParts: 26\n", state)
+        self.tom_proxy.PairContractionDistance = 0.0
+        self.assertEqual(self.counts(), (27 * 4, 27 * 4))
+
+
 class NotATOM(unittest.TestCase):
     def test_extract_non_tom_gives_empty_output(self):
         source = Sphere()
