@@ -361,11 +361,11 @@ public:
    * Cost model calibration. AutomaticCalibration (default on) runs
    * Calibrate()'s renders in the first render with objects, still or not
    * (unless the policy is FULL_RESOLUTION), so that no interactive frame
-   * pays for it. With background hierarchy builds it waits for the first
-   * render in which no hierarchy is pending; that render may come while the
-   * user drags, so the samples are then spread over the interactive frames
-   * (one render per frame, sized to 40% of the target, planned as fixed
-   * time; a still frame runs the rest). OnlineCalibration (default on) refines the coefficients
+   * pays for it. With background hierarchy builds pending in that render it
+   * does not run (the frame in which the builds end may come while the user
+   * drags): the model is then fitted from the frames themselves, and counts
+   * as measured after 14 of them. OnlineCalibration (default on) refines the
+   * coefficients
    * from every measured frame, within lower bounds (see the class comment).
    * Turn both off and set the coefficients for deterministic resolutions
    * (tests).
@@ -392,6 +392,12 @@ public:
    */
   bool Calibrate();
   vtkGetMacro(Calibrated, bool);
+  /**
+   * Whether the cost model is a measurement of this machine: calibrated,
+   * given (SetCostCoefficients), scaled by a still frame, or fitted from 14
+   * interactive frames. Until then no frame drops objects.
+   */
+  bool GetCostModelMeasured() const;
   vtkGetMacro(CalibrationTime, double);   ///< seconds of the last calibration (0: none)
   vtkGetMacro(CalibrationRenders, int);   ///< hidden calibration renders so far
 
@@ -642,7 +648,7 @@ private:
   double PrepareDropping(bool still, double correction);
   double PlanningMargin(double target, double fixed, double objectFixed, bool still);
   bool ChooseWithDropping(double target, double fixed, double objectFixed);
-  void RunCalibration(bool spread);
+  void RunCalibration();
   void CalibrationStep(double savedAngle, double savedScale);
   double CalibrationSample(double r, int renders, bool record = true);
   void FinishCalibration();

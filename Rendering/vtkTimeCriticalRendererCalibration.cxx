@@ -21,6 +21,11 @@ bool vtkTimeCriticalRenderer::Calibrate()
   return this->Calibrated;
 }
 
+bool vtkTimeCriticalRenderer::GetCostModelMeasured() const
+{
+  return !this->Internal->UsingDefaults;
+}
+
 void vtkTimeCriticalRenderer::ScaleDefaultCoefficients(double measured)
 {
   // Without a calibration (it cannot run on one rank of a parallel render
@@ -65,19 +70,10 @@ void vtkTimeCriticalRenderer::ScaleDefaultCoefficients(double measured)
 // noise only adds). About 12 targets' worth of rendering in all plus the
 // first upload of the vertex data, which the first frame pays anyway; never
 // more than CalibrationTimeLimit targets.
-//
-// Spread: when the calibration starts in an interactive frame after frames
-// were drawn (background builds held it back until a hierarchy arrived, while
-// the user may be dragging), the same plan runs a few samples per frame,
-// sized to SpreadShare of the target and rendered once each, at most
-// SpreadRenders per frame; the frame plans the time they took as fixed. No frame stalls; the fit comes after about 14
-// frames, which the online refinement bridges.
 
 namespace
 {
 constexpr double CalibrationTimeLimit = 30.0; // in targets
-constexpr double SpreadShare = 0.4;           // of the target, per spread frame
-constexpr int SpreadRenders = 1;              // at most, per spread frame
 constexpr double Zooms[] = { 1.0, 0.7, 1.8 };
 constexpr double Fractions[] = { 1.0, 0.5, 0.2, 0.0 };
 // Steps: 0 the coarsest levels at the first zoom, 1 the probe at a quarter
@@ -85,58 +81,32 @@ constexpr double Fractions[] = { 1.0, 0.5, 0.2, 0.0 };
 constexpr std::size_t StepCount = 2 + 3 * 4;
 }
 
-void vtkTimeCriticalRenderer::RunCalibration(bool spread)
+void vtkTimeCriticalRenderer::RunCalibration()
 {
   Internals& in = *this->Internal;
   auto& run = in.Calibration;
   const auto start = Clock::now();
-  if (!run.Active)
-  {
-    const bool automatic = run.Automatic;
-    run = Internals::CalibrationRun();
-    run.Active = true;
-    run.Automatic = automatic;
-    run.Spread = spread;
-    this->CalibrationAttempted = true;
-    // With UseDesiredUpdateRate the interactive target is not known in a still
-    // frame; the setting is then the yardstick (and covers faster targets).
-    run.Sizing = std::isfinite(in.EffectiveTarget)
-      ? std::max(in.EffectiveTarget, this->TargetFrameTime)
-      : this->TargetFrameTime;
-    if (spread)
-    {
-      run.Sizing *= SpreadShare;
-    }
-    run.TriangleCost = std::max(in.Model.GetCoefficients().Triangle, 1e-12);
-  }
-  run.Spread = run.Spread && spread; // a still frame finishes a spread run
+  run = Internals::CalibrationRun();
+  this->CalibrationAttempted = true;
+  // With UseDesiredUpdateRate the interactive target is not known in a still
+  // frame; the setting is then the yardstick (and covers faster targets).
+  run.Sizing = std::isfinite(in.EffectiveTarget)
+    ? std::max(in.EffectiveTarget, this->TargetFrameTime)
+    : this->TargetFrameTime;
+  run.TriangleCost = std::max(in.Model.GetCoefficients().Triangle, 1e-12);
   vtkCamera* camera = this->GetActiveCamera();
   const double savedAngle = camera->GetViewAngle();
   const double savedScale = camera->GetParallelScale();
   const double deadline = CalibrationTimeLimit * run.Sizing;
-  const int rendersBefore = run.Renders;
-  while (run.Step < StepCount)
+  while (run.Step < StepCount && Seconds(start, Clock::now()) <= deadline)
   {
-    const double elapsed = Seconds(start, Clock::now());
-    const int rendered = run.Renders - rendersBefore;
-    if ((!run.Spread && run.Seconds + elapsed > deadline) ||
-      (run.Spread && rendered > 0 &&
-        (rendered >= SpreadRenders || elapsed > 0.5 * run.Sizing)))
-    {
-      break;
-    }
     this->CalibrationStep(savedAngle, savedScale);
   }
   camera->SetViewAngle(savedAngle);
   camera->SetParallelScale(savedScale);
   in.FramePending = false;
-  run.FrameSeconds = Seconds(start, Clock::now());
-  run.Seconds += run.FrameSeconds;
-  this->CalibrationTime = run.Seconds;
-  if (run.Step >= StepCount || !run.Spread)
-  {
-    this->FinishCalibration();
-  }
+  this->CalibrationTime = Seconds(start, Clock::now());
+  this->FinishCalibration();
 }
 
 void vtkTimeCriticalRenderer::CalibrationStep(double savedAngle, double savedScale)
@@ -166,18 +136,15 @@ void vtkTimeCriticalRenderer::CalibrationStep(double savedAngle, double savedSca
   }
   if (step == 0)
   {
-    if (!run.Spread)
-    {
-      this->CalibrationSample(0.0, 1, false); // uploads the vertex data
-    }
-    run.CoarseTime = this->CalibrationSample(0.0, run.Spread ? 1 : 2);
+    this->CalibrationSample(0.0, 1, false); // uploads the vertex data
+    run.CoarseTime = this->CalibrationSample(0.0, 2);
     run.CoarseTriangles = in.Features[timecritical::FrameCostModel::FeatureTriangles];
     return;
   }
   if (step == 1)
   {
     const double probe = std::min(1.0, 0.25 * run.Sizing / run.TriangleCost / visible);
-    const double probeTime = this->CalibrationSample(probe, run.Spread ? 1 : 2);
+    const double probeTime = this->CalibrationSample(probe, 2);
     const double probeTriangles = in.Features[timecritical::FrameCostModel::FeatureTriangles];
     const double slope = (probeTime - run.CoarseTime) / (probeTriangles - run.CoarseTriangles);
     if (std::isfinite(slope) && slope > 0.0)
@@ -189,7 +156,7 @@ void vtkTimeCriticalRenderer::CalibrationStep(double savedAngle, double savedSca
   // What the target affords at the measured cost, largest first: every
   // buffer grows once, in the first of its renders.
   const double largest = std::min(1.0, run.Sizing / run.TriangleCost / visible);
-  this->CalibrationSample(Fractions[fraction] * largest, run.Spread ? 1 : 2);
+  this->CalibrationSample(Fractions[fraction] * largest, 2);
 }
 
 double vtkTimeCriticalRenderer::CalibrationSample(double r, int renders, bool record)
@@ -209,7 +176,6 @@ double vtkTimeCriticalRenderer::CalibrationSample(double r, int renders, bool re
     const auto start = Clock::now();
     this->Superclass::DeviceRender();
     glFinish();
-    ++run.Renders;
     ++this->CalibrationRenders;
     best = std::min(best, Seconds(start, Clock::now()));
   }
@@ -227,7 +193,6 @@ void vtkTimeCriticalRenderer::FinishCalibration()
 {
   Internals& in = *this->Internal;
   auto& run = in.Calibration;
-  run.Active = false;
   if (run.Samples == 0)
   {
     // Nothing in view at any zoom (a script's first render comes before its
@@ -249,7 +214,6 @@ void vtkTimeCriticalRenderer::FinishCalibration()
     in.StillCorrector.Reset();
     this->Calibrated = true;
     in.UsingDefaults = false;
-    in.CalibrationProvisional = run.Automatic && !in.CameraWasReset;
   }
   else
   {

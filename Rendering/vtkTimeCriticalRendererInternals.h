@@ -106,6 +106,10 @@ constexpr double MaximumMargin = 0.25;
 /// Weight of coefficients given by SetCostCoefficients() in the online fit,
 /// in frames (a calibration has 14 samples).
 constexpr double GivenCoefficientFrames = 16.0;
+
+/// Interactive frames the online fit needs before a model that was never
+/// calibrated counts as measured (as many as a calibration's samples).
+constexpr int OnlineFramesToTrust = 14;
 } // namespace rendering
 } // namespace timecritical
 namespace tcr = timecritical::rendering; // short name for the state below
@@ -145,15 +149,10 @@ struct vtkTimeCriticalRenderer::Internals
   bool FramePending = false; // this renderer drew in the window's current frame
   std::array<double, tcr::FeatureCount> Features{};
 
-  // The start-up calibration's samples (Calibration.cxx): all in one frame,
-  // or, when it starts in an interactive frame after frames were drawn
-  // (background builds delayed it), a few per frame.
+  // The start-up calibration's samples (Calibration.cxx).
   struct CalibrationRun
   {
     static constexpr std::size_t MaxSamples = 2 + 3 * 4;
-    bool Active = false;
-    bool Spread = false;
-    bool Automatic = true; // not asked for by Calibrate()
     std::size_t Step = 0; // next step of the plan (see CalibrationStep)
     double Sizing = 0.0;  // the target the samples are sized to (s)
     double TriangleCost = 0.0;
@@ -161,13 +160,10 @@ struct vtkTimeCriticalRenderer::Internals
     double X[MaxSamples * tcr::FeatureCount] = {};
     double Times[MaxSamples] = {};
     std::size_t Samples = 0;
-    int Renders = 0;
-    double Seconds = 0.0;      // spent in all frames so far
-    double FrameSeconds = 0.0; // spent in the current frame
   };
   CalibrationRun Calibration;
-  bool CalibrationHeldBack = false;  // the automatic calibration waited for a hierarchy
-  double CalibrationFrameTime = 0.0; // spread samples' seconds in the frame being planned
+  bool CalibrationHeldBack = false; // background builds held the automatic calibration back
+  int OnlineFrames = 0;             // frames the online fit took while UsingDefaults
 
   bool StillRequested = false;
   bool CalibrationRequested = false;
