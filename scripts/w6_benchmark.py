@@ -155,16 +155,21 @@ def flight(scene, frames):
 
 
 def top_area_dropped(renderer):
-    """Visible objects in the top 10% by projected area that the frame dropped."""
+    """Visible objects in the top 10% by projected area that the frame dropped,
+    and how many of those were dropped while a smaller object was drawn (an
+    order violation when an object's value is its area: --area-only)."""
     visible = []
     for i in range(renderer.GetNumberOfObjects()):
         if renderer.GetObjectResolution(i) > 0.0 or renderer.GetObjectDropped(i):
             visible.append((renderer.GetObjectPixels(i), i))
     if not visible:
-        return 0
+        return 0, 0
     visible.sort()
     threshold = visible[len(visible) - max(1, len(visible) // 10)][0]
-    return sum(1 for pixels, i in visible if pixels >= threshold and renderer.GetObjectDropped(i))
+    smallest_drawn = min((p for p, i in visible if not renderer.GetObjectDropped(i)),
+                         default=float("inf"))
+    dropped = [p for p, i in visible if p >= threshold and renderer.GetObjectDropped(i)]
+    return len(dropped), sum(1 for p in dropped if p > smallest_drawn)
 
 
 def fly(window, renderer, scene, args, drop):
@@ -182,6 +187,7 @@ def fly(window, renderer, scene, args, drop):
         objects = renderer.GetNumberOfObjects()
         culled = renderer.GetNumberOfCulledObjects()
         dropped = renderer.GetNumberOfDroppedObjects()
+        top10 = top_area_dropped(renderer)
         frames.append({"wall_ms": wall,
                        "measured_ms": 1000.0 * renderer.GetMeasuredFrameTime(),
                        "predicted_ms": 1000.0 * renderer.GetPredictedFrameTime(),
@@ -189,7 +195,8 @@ def fly(window, renderer, scene, args, drop):
                        "optimization_ms": 1000.0 * renderer.GetOptimizationTime(),
                        "triangles": renderer.GetObjectTrianglesDrawn(),
                        "drawn": objects - culled - dropped, "dropped": dropped, "culled": culled,
-                       "top10_dropped": top_area_dropped(renderer),
+                       "top10_dropped": top10[0],
+                       "top10_dropped_before_smaller": top10[1],
                        "still": bool(renderer.GetLastRenderWasStill())})
     return frames
 
@@ -201,7 +208,9 @@ def summarize(frames, target_ms):
             "mean_ms": statistics.mean(times), "share_within_110_percent": within / len(times),
             "median_predicted_ms": statistics.median(f["predicted_ms"] for f in frames),
             "median_dropped": statistics.median(f["dropped"] for f in frames),
-            "frames_with_top10_dropped": sum(1 for f in frames if f["top10_dropped"] > 0)}
+            "frames_with_top10_dropped": sum(1 for f in frames if f["top10_dropped"] > 0),
+            "frames_with_top10_dropped_before_smaller":
+                sum(1 for f in frames if f["top10_dropped_before_smaller"] > 0)}
 
 
 def run(args, blocks, scene):
@@ -301,6 +310,8 @@ def main():
     top = on["frames_with_top10_dropped"]
     print("top 10%% by projected area drawn in every frame with dropping on: %s"
           % ("yes" if top == 0 else "NO (%d frames dropped some)" % top))
+    print("frames that dropped a top-10%% object while a smaller one was drawn: %d"
+          % on["frames_with_top10_dropped_before_smaller"])
     check_result(result, args)
     path = os.path.join(args.output, "w6.json")
     with open(path, "w") as stream:
