@@ -258,7 +258,9 @@ public:
    * dropped strictly by value: one is dropped only while every less valuable
    * one is dropped too, or when they could not make room for it together. A frame whose fixed part alone (clear, swap, ordinary
    * actors, draw calls) reaches the target drops nothing: no choice of
-   * objects could hold it, and neither does a frame planned with a cost
+   * objects could hold it, and a frame never drops every object (the most
+   * valuable one is drawn, over the target), and neither does a frame
+   * planned with a cost
    * model never measured here (no calibration, no given coefficients and no
    * still frame yet): its overestimates would empty the view. Dropped
    * objects are not drawn at all (resolution 0, as a

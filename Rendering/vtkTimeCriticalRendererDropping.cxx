@@ -92,6 +92,39 @@ double vtkTimeCriticalRenderer::PlanningMargin(
   return std::min(wanted, MaximumMarginShare * std::max(0.0, room));
 }
 
+namespace
+{
+/// When every object is dropped, draws the most valuable at its cheapest tuple.
+void KeepTheMostValuable(const timecritical::TupleProblem& problem, int* algorithms, double* r,
+  timecritical::TupleProblem::Solution& solution)
+{
+  const std::size_t m = problem.Count;
+  std::size_t best = m;
+  for (std::size_t k = 0; k < m; ++k)
+  {
+    if (algorithms[k] != timecritical::TupleProblem::NotDrawn)
+    {
+      return; // something is drawn
+    }
+    if (best == m || problem.DropDegradation[k] > problem.DropDegradation[best])
+    {
+      best = k;
+    }
+  }
+  if (best == m)
+  {
+    return;
+  }
+  const int algorithm = problem.CheapestAlgorithm(best);
+  algorithms[best] = algorithm;
+  r[best] = problem.Lo(best, static_cast<std::size_t>(algorithm));
+  solution.Cost += problem.Cost(best, algorithm, r[best]);
+  solution.Objective +=
+    problem.Degradation(best, algorithm, r[best]) - problem.DropDegradation[best];
+  solution.Dropped -= 1;
+}
+}
+
 bool vtkTimeCriticalRenderer::ChooseWithDropping(double target, double fixed, double objectFixed)
 {
   Internals& in = *this->Internal;
@@ -137,6 +170,11 @@ bool vtkTimeCriticalRenderer::ChooseWithDropping(double target, double fixed, do
     vtkErrorMacro("Cannot choose the objects to drop: " << e.what());
     return false;
   }
+  // Dropping never empties the view: an empty frame tells the user nothing,
+  // an over-budget one at least shows the most valuable object (a single
+  // object whose coarsest level exceeds the target, a large stand-in while
+  // its hierarchy builds).
+  KeepTheMostValuable(problem, in.TupleAlgorithm.data(), in.Chosen.data(), solution);
   vtkIdType dropped = 0;
   for (std::size_t k = 0; k < m; ++k)
   {

@@ -318,3 +318,33 @@ TEST(TimeCriticalRendererDropping, AModelNeverMeasuredDropsNothing)
   window->Render();
   EXPECT_GT(renderer->GetNumberOfDroppedObjects(), 0);
 }
+
+TEST(TimeCriticalRendererDropping, DroppingNeverEmptiesTheView)
+{
+  // One object whose coarsest level exceeds what the fixed part leaves: it
+  // is drawn at its coarsest level (over the target), not dropped.
+  vtkNew<vtkRenderWindow> window;
+  vtkNew<vtkTimeCriticalRenderer> renderer;
+  vtkNew<vtkMultiresolutionPolyDataMapper> mapper;
+  vtkNew<vtkActor> actor;
+  vtkNew<vtkMultiBlockDataSet> one;
+  one->SetBlock(0, MixedGrid(2)->GetBlock(0));
+  mapper->SetInputDataObject(one);
+  actor->SetMapper(mapper);
+  renderer->AddActor(actor);
+  window->SetOffScreenRendering(1);
+  window->SetSize(300, 300);
+  window->AddRenderer(renderer);
+  renderer->ResetCamera();
+  renderer->AutomaticCalibrationOff();
+  renderer->OnlineCalibrationOff();
+  renderer->SetCostCoefficients(Scene::FrameCost, 0.0, Scene::TriangleCost, 0.0);
+  renderer->SetTargetFrameTime(Scene::FrameCost + 1e-7); // the fixed part fits, the object does not
+  window->Render();
+  ASSERT_EQ(renderer->GetNumberOfObjects(), 1);
+  EXPECT_EQ(renderer->GetNumberOfDroppedObjects(), 0);
+  EXPECT_FALSE(renderer->GetObjectDropped(0));
+  EXPECT_GT(renderer->GetObjectTriangles(0), 0);
+  EXPECT_NEAR(renderer->GetObjectResolution(0), mapper->GetObjectCoarsestResolution(0), 1e-6);
+  EXPECT_GT(renderer->GetPredictedFrameTime(), renderer->GetTargetFrameTime());
+}
