@@ -74,7 +74,6 @@ void vtkMultiresolutionPolyDataMapper::Internals::ForgetBuilds()
   this->Built.clear();
   this->Interims.clear();
   this->Failed.clear();
-  this->Hashes.clear();
   this->CurrentKeys.clear();
   this->PendingHierarchies = 0;
   this->BackgroundReset = false;
@@ -188,23 +187,15 @@ bool vtkMultiresolutionPolyDataMapper::TakeBuiltHierarchies()
 }
 
 //------------------------------------------------------------------------------
-uint64_t vtkMultiresolutionPolyDataMapper::Internals::KeyOf(
-  vtkPolyData* leaf, std::unordered_map<vtkPolyData*, LeafHash>& next)
+uint64_t vtkMultiresolutionPolyDataMapper::Internals::KeyOf(vtkPolyData* leaf)
 {
-  auto known = this->Hashes.find(leaf);
-  LeafHash entry;
-  if (known != this->Hashes.end() && known->second.Time == leaf->GetMTime())
+  LeafFacts& facts = this->FactsOf(leaf);
+  if (!facts.Hashed)
   {
-    entry = known->second;
+    facts.Key = timecritical::HashLeafContent(leaf);
+    facts.Hashed = true;
   }
-  else
-  {
-    entry.Leaf = leaf;
-    entry.Time = leaf->GetMTime();
-    entry.Key = timecritical::HashLeafContent(leaf);
-  }
-  next[leaf] = entry;
-  return entry.Key;
+  return facts.Key;
 }
 
 vtkPolyData* vtkMultiresolutionPolyDataMapper::Internals::InterimOf(
@@ -227,7 +218,6 @@ void vtkMultiresolutionPolyDataMapper::Internals::SubstituteBuiltLeaves(
   vtkMultiresolutionPolyDataMapper* self, Leaves& leaves, std::vector<char>& explained)
 {
   explained.assign(leaves.size(), 0);
-  std::unordered_map<vtkPolyData*, LeafHash> hashes;
   std::vector<std::pair<uint64_t, unsigned int>> keys;
   const int hierarchy = self->BackgroundHierarchy;
   int pending = 0;
@@ -242,7 +232,7 @@ void vtkMultiresolutionPolyDataMapper::Internals::SubstituteBuiltLeaves(
     {
       continue;
     }
-    const uint64_t key = this->KeyOf(leaf, hashes);
+    const uint64_t key = this->KeyOf(leaf);
     keys.emplace_back(key, leaves[k].second);
     auto built = this->Built.find(key);
     if (built != this->Built.end())
@@ -265,7 +255,6 @@ void vtkMultiresolutionPolyDataMapper::Internals::SubstituteBuiltLeaves(
       leaves[k].first = this->InterimOf(leaf, key, self->BackgroundInterimDivisions);
     }
   }
-  this->Hashes.swap(hashes);
   // Builds of leaves this input no longer has are cancelled; results and
   // failures of such leaves are forgotten.
   std::vector<uint64_t> kept(keys.size());

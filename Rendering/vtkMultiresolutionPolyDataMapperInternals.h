@@ -305,19 +305,12 @@ struct vtkMultiresolutionPolyDataMapper::Internals
   vtkNew<vtkMultiresolutionReleaseProxy> ReleaseProxy;
   vtkOpenGLRenderWindow* Window = nullptr; // holds our GL resources; cleared on release
 
-  // Background builds (Background.cxx): the queue, the content hashes of
-  // the leaves read (kept with the leaves so that their addresses stay
-  // theirs), the finished hierarchies of current leaves by key and the keys
-  // whose build failed (drawn in full), the keys of the last read (with
-  // their block, for messages), and results taken (grow-only).
+  // Background builds (Background.cxx): the queue, the finished hierarchies
+  // of current leaves by key (the leaves' content hashes, kept in their
+  // LeafFacts) and the keys whose build failed (drawn in full), the keys of
+  // the last read (with their block, for messages), and results taken
+  // (grow-only).
   vtkSmartPointer<vtkHierarchyBuildQueue> Queue;
-  struct LeafHash
-  {
-    vtkSmartPointer<vtkPolyData> Leaf;
-    vtkMTimeType Time = 0;
-    uint64_t Key = 0;
-  };
-  std::unordered_map<vtkPolyData*, LeafHash> Hashes;
   std::map<uint64_t, vtkSmartPointer<vtkPolyData>> Built;
   // Stand-ins drawn while pending (null: the leaf itself), by key.
   std::map<uint64_t, vtkSmartPointer<vtkPolyData>> Interims;
@@ -334,20 +327,23 @@ struct vtkMultiresolutionPolyDataMapper::Internals
   bool BackgroundReset = false; // forget the builds at the next read
 
   // What a read learns of a leaf that stays true while the leaf is not
-  // modified: the validator's verdict and the cells' bounds. Swapping in
-  // finished builds reads every leaf again; the unchanged ones are not
-  // checked again. Entries of this read and of the previous one (kept with
-  // their leaves, so that the addresses stay theirs).
+  // modified: the validator's verdict, the cells' bounds and (background
+  // builds) the content hash. Swapping in finished builds reads every leaf
+  // again; the unchanged ones are not checked or hashed again. Entries of
+  // this read and of the previous one (kept with their leaves, so that the
+  // addresses stay theirs).
   struct LeafFacts
   {
     vtkSmartPointer<vtkPolyData> Leaf;
     vtkMTimeType Time = 0;
     std::string Problem; // vtkPolyDataValidator::Check's verdict
     double Bounds[6] = { 1, -1, 1, -1, 1, -1 };
+    bool Hashed = false; // Key is the leaf's content hash
+    uint64_t Key = 0;
   };
   std::unordered_map<vtkPolyData*, LeafFacts> Facts;
   std::unordered_map<vtkPolyData*, LeafFacts> PreviousFacts;
-  const LeafFacts& FactsOf(vtkPolyData* leaf);
+  LeafFacts& FactsOf(vtkPolyData* leaf);
   // The TOM reader, remembering which arrays validated (see vtkTOMFieldData).
   vtkNew<vtkTOMFieldData> Reader;
 
@@ -404,7 +400,7 @@ struct vtkMultiresolutionPolyDataMapper::Internals
   // drawn without one for a known reason (pending, or failed with an error).
   void SubstituteBuiltLeaves(vtkMultiresolutionPolyDataMapper* self, Leaves& leaves,
     std::vector<char>& explained);
-  uint64_t KeyOf(vtkPolyData* leaf, std::unordered_map<vtkPolyData*, LeafHash>& next);
+  uint64_t KeyOf(vtkPolyData* leaf); ///< the leaf's content hash, computed once per unmodified leaf
   vtkPolyData* InterimOf(vtkPolyData* leaf, uint64_t key, int divisions);
   void ClearBackground(bool read); ///< a setting changed; read: read the leaves again
   void ForgetBuilds();              ///< at a read, once no object draws them

@@ -153,7 +153,7 @@ void vtkMultiresolutionPolyDataMapper::ReadObjects(vtkDataObject* input)
   in.PreviousFacts.clear();
 }
 
-const vtkMultiresolutionPolyDataMapper::Internals::LeafFacts&
+vtkMultiresolutionPolyDataMapper::Internals::LeafFacts&
 vtkMultiresolutionPolyDataMapper::Internals::FactsOf(vtkPolyData* leaf)
 {
   auto current = this->Facts.find(leaf);
@@ -168,6 +168,7 @@ vtkMultiresolutionPolyDataMapper::Internals::FactsOf(vtkPolyData* leaf)
     facts = std::move(previous->second);
     return facts;
   }
+  facts = LeafFacts(); // a stale entry of this read keeps nothing
   facts.Leaf = leaf;
   facts.Time = leaf->GetMTime();
   facts.Problem = vtkPolyDataValidator::Check(leaf);
