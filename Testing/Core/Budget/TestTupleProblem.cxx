@@ -13,6 +13,7 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace
@@ -103,22 +104,41 @@ TEST(TupleProblem, CheapestDroppingAndSummary)
   EXPECT_DOUBLE_EQ(sum.Cost, 0.001 + 0.015);
 }
 
+namespace
+{
+/// Five objects, one algorithm, values 5 down to 1: cheapest cost MaxTime *
+/// Lo (Lo = 0.1), value DropDegradation, dropping allowed.
+struct FiveObjects
+{
+  explicit FiveObjects(std::vector<double> maxTime)
+    : MaxTime(std::move(maxTime))
+  {
+  }
+  TupleProblem View(double budget) const
+  {
+    TupleProblem p;
+    p.Count = 5;
+    p.AlgorithmCount = 1;
+    p.Alpha = this->Alpha.data();
+    p.Weight = this->Weight.data();
+    p.MaxTime = this->MaxTime.data();
+    p.MinResolution = this->Lo.data();
+    p.DropDegradation = this->Value.data();
+    p.AllowDrop = true;
+    p.Budget = budget;
+    return p;
+  }
+  std::vector<double> MaxTime;
+  std::vector<double> Alpha = { 1.0 }, Weight = std::vector<double>(5, 1.0),
+                      Lo = std::vector<double>(5, 0.1), Value = { 5.0, 4.0, 3.0, 2.0, 1.0 };
+};
+}
+
 TEST(TupleProblem, ValueOrderViolationsWithReusedScratch)
 {
-  // Five objects, one algorithm: cheapest cost MaxTime * Lo, value DropDegradation.
-  const std::vector<double> alpha = { 1.0 }, weight(5, 1.0), lo(5, 0.1);
-  const std::vector<double> maxTime = { 0.01, 0.02, 0.03, 0.04, 0.05 };
-  const std::vector<double> value = { 5.0, 4.0, 3.0, 2.0, 1.0 };
-  TupleProblem p;
-  p.Count = 5;
-  p.AlgorithmCount = 1;
-  p.Alpha = alpha.data();
-  p.Weight = weight.data();
-  p.MaxTime = maxTime.data();
-  p.MinResolution = lo.data();
-  p.DropDegradation = value.data();
-  p.AllowDrop = true;
-  p.Budget = 0.005;
+  const FiveObjects five({ 0.01, 0.02, 0.03, 0.04, 0.05 });
+  const std::vector<double>& maxTime = five.MaxTime;
+  TupleProblem p = five.View(0.005);
   TupleProblem::ValueOrderScratch scratch;
   std::size_t dropped = 99, drawn = 99;
   // Object 1 (value 4, cost 0.002) dropped while object 4 (value 1, cost 0.005) is drawn.
@@ -197,19 +217,8 @@ TEST(TupleProblem, StrictValueOrderDropsTheLeastValuableFirst)
   // Value and cost grow together (fill-bound objects): the weak order lets
   // the most valuable go; the strict one draws it and drops the least
   // valuable until there is room, and never raises the cost.
-  const std::vector<double> alpha = { 1.0 }, weight(5, 1.0), lo(5, 0.1);
-  const std::vector<double> maxTime = { 0.05, 0.04, 0.03, 0.02, 0.01 }; // cheapest: 0.005 ... 0.001
-  const std::vector<double> value = { 5.0, 4.0, 3.0, 2.0, 1.0 };
-  TupleProblem p;
-  p.Count = 5;
-  p.AlgorithmCount = 1;
-  p.Alpha = alpha.data();
-  p.Weight = weight.data();
-  p.MaxTime = maxTime.data();
-  p.MinResolution = lo.data();
-  p.DropDegradation = value.data();
-  p.AllowDrop = true;
-  p.Budget = 0.0075;
+  const FiveObjects five({ 0.05, 0.04, 0.03, 0.02, 0.01 }); // cheapest: 0.005 ... 0.001
+  TupleProblem p = five.View(0.0075);
   TupleProblem::ValueOrderScratch scratch;
   const int N = TupleProblem::NotDrawn;
   std::size_t dropped = 99, drawn = 99;
