@@ -5,6 +5,7 @@
 // heuristics' effect, bad settings, calibration, and image baselines of a
 // frame and its resolution map.
 #include "RenderTestSupport.h"
+#include "TimeCriticalRendererTestSupport.h"
 #include "TestImageCompare.h"
 #include "vtkMultiresolutionPolyDataMapper.h"
 #include "vtkTOMBuilder.h"
@@ -44,31 +45,7 @@ constexpr double NaN = std::numeric_limits<double>::quiet_NaN();
 // One bumpy-sphere TOM (about 4,700 triangles), built once.
 vtkPolyData* SphereTOM()
 {
-  static vtkSmartPointer<vtkPolyData> tom;
-  if (!tom)
-  {
-    vtkNew<vtkSphereSource> sphere;
-    sphere->SetThetaResolution(60);
-    sphere->SetPhiResolution(40);
-    sphere->Update();
-    vtkNew<vtkPolyData> bumpy;
-    bumpy->DeepCopy(sphere->GetOutput());
-    vtkPoints* points = bumpy->GetPoints();
-    for (vtkIdType i = 0; i < points->GetNumberOfPoints(); ++i)
-    {
-      double p[3];
-      points->GetPoint(i, p);
-      const double s = 1.0 + 0.1 * std::sin(7.0 * p[0]) * std::sin(5.0 * p[1]);
-      points->SetPoint(i, s * p[0], s * p[1], s * p[2]);
-    }
-    vtkNew<vtkPolyDataNormals> normals;
-    normals->SetInputData(bumpy);
-    normals->SplittingOff();
-    vtkNew<vtkTOMBuilder> builder;
-    builder->SetInputConnection(normals->GetOutputPort());
-    builder->Update();
-    tom = builder->GetOutput();
-  }
+  static vtkSmartPointer<vtkPolyData> tom = tt::MakeBumpySphereTOM(60, 40);
   return tom;
 }
 

@@ -9,6 +9,7 @@
 // policies, the setting turned off and a fixed part over the target draw
 // everything; bad indices.
 #include "RenderTestSupport.h"
+#include "TimeCriticalRendererTestSupport.h"
 #include "vtkMultiresolutionPolyDataMapper.h"
 #include "vtkTOMBuilder.h"
 #include "vtkTimeCriticalRenderer.h"
@@ -39,27 +40,7 @@ vtkPolyData* SphereTOM(int theta)
   vtkSmartPointer<vtkPolyData>& tom = toms[theta > 30 ? 1 : 0];
   if (!tom)
   {
-    vtkNew<vtkSphereSource> sphere;
-    sphere->SetThetaResolution(theta);
-    sphere->SetPhiResolution(2 * theta / 3);
-    sphere->Update();
-    vtkNew<vtkPolyData> bumpy;
-    bumpy->DeepCopy(sphere->GetOutput());
-    vtkPoints* points = bumpy->GetPoints();
-    for (vtkIdType i = 0; i < points->GetNumberOfPoints(); ++i)
-    {
-      double p[3];
-      points->GetPoint(i, p);
-      const double s = 1.0 + 0.1 * std::sin(7.0 * p[0]) * std::sin(5.0 * p[1]);
-      points->SetPoint(i, s * p[0], s * p[1], s * p[2]);
-    }
-    vtkNew<vtkPolyDataNormals> normals;
-    normals->SetInputData(bumpy);
-    normals->SplittingOff();
-    vtkNew<vtkTOMBuilder> builder;
-    builder->SetInputConnection(normals->GetOutputPort());
-    builder->Update();
-    tom = builder->GetOutput();
+    tom = timecritical::testing::MakeBumpySphereTOM(theta, 2 * theta / 3);
   }
   return tom;
 }
